@@ -1,0 +1,23 @@
+# Finds walkrad's dependencies, all from Debian packages (scripts/install-deps.sh installs them).
+# Facts and pitfalls: ../shared/design/deps.md.
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+find_package(nlohmann_json 3 CONFIG REQUIRED)
+find_package(draco CONFIG REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
+if(WALKRAD_BUILD_PIPELINE)
+  find_package(TBB CONFIG REQUIRED)
+  find_package(embree 3 CONFIG REQUIRED)
+  find_package(meshoptimizer CONFIG REQUIRED)
+  find_package(CLI11 CONFIG REQUIRED)
+endif()
+
+if(WALKRAD_BUILD_RUNTIME)
+  find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
+  find_package(glfw3 3.3 CONFIG REQUIRED)
+  pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+  if(NOT TARGET CLI11::CLI11)
+    find_package(CLI11 CONFIG REQUIRED)
+  endif()
+endif()

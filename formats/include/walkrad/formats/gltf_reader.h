@@ -1,0 +1,21 @@
+// Reads a glTF 2.0 scene (.gltf or .glb) into the plain scene arrays (scene.h):
+// - triangle primitives of every mesh under the default scene's node transforms (TRS or matrix);
+//   pairs of consecutive triangles that form a planar convex quad are merged into one quad;
+// - diffuse reflectance = baseColorFactor × the average of baseColorTexture (when present);
+// - emission E = π × emissiveFactor × KHR_materials_emissive_strength (glTF emission is radiance);
+// - camera nodes (perspective) become viewpoints.
+// Zero-area triangles are dropped and counted. Bad input throws InputError naming file and place.
+#pragma once
+
+#include <string>
+
+#include "walkrad/formats/scene.h"
+
+namespace walkrad {
+
+Scene read_gltf(const std::string& path);
+
+// Reads a scene by extension (.gltf, .glb; .mgf later). Throws InputError for an unknown extension.
+Scene read_scene(const std::string& path);
+
+}  // namespace walkrad

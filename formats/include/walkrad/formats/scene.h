@@ -1,0 +1,60 @@
+// The plain scene arrays that every reader (glTF, MGF) produces and every later stage consumes:
+// planar polygons (triangles and quads) in world space, metres, with diffuse materials, plus the
+// viewpoints (cameras) found in the scene file. No pointers into reader-specific structures.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "walkrad/formats/vec3.h"
+
+namespace walkrad {
+
+// A diffuse material. Radiosity B = π·L (W/m²), so emission is stored as emitted radiosity
+// E = π × emitted radiance (../shared/design/algorithms.md §1).
+struct Material {
+  std::string name;
+  Vec3 reflectance;  // diffuse ρ per channel, in [0, 1)
+  Vec3 emission;     // emitted radiosity E, W/m², per channel
+  bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+};
+
+// A planar, convex polygon with 3 or 4 vertices, counter-clockwise seen from its front (the side
+// its normal points to). Only the front side exchanges light.
+struct Polygon {
+  std::array<Vec3, 4> v{};
+  uint8_t count = 3;
+  uint32_t material = 0;
+  uint32_t source = 0;  // the input primitive it came from (glTF mesh index, MGF face line), for messages
+};
+
+// Unnormalised normal: its length is twice the area (Newell's method, robust for quads).
+Vec3 polygon_area_normal(const Polygon& p);
+Vec3 polygon_normal(const Polygon& p);
+double polygon_area(const Polygon& p);
+Vec3 polygon_centroid(const Polygon& p);  // area centroid
+
+// A pinhole viewpoint. forward and up are unit and orthogonal; yfov in radians.
+struct Viewpoint {
+  std::string name;
+  Vec3 position;
+  Vec3 forward{0, 0, -1};
+  Vec3 up{0, 1, 0};
+  double yfov = 0.8;
+  double aspect = 1.0;  // width / height
+};
+
+struct Scene {
+  std::string source;  // the file it was read from
+  std::vector<Material> materials;
+  std::vector<Polygon> polygons;
+  std::vector<Viewpoint> cameras;  // viewpoints found in the scene file itself (glTF camera nodes)
+  uint64_t dropped_degenerate = 0;     // zero-area triangles dropped by the reader
+  std::vector<std::string> warnings;  // what the reader changed or ignored, for the user
+
+  Bounds bounds() const;
+};
+
+}  // namespace walkrad

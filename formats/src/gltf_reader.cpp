@@ -1,0 +1,263 @@
+// read_gltf (gltf_reader.h): glTF 2.0 scene → plain scene arrays.
+#include "walkrad/formats/gltf_reader.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+
+#include "gltf_access.h"
+#include "walkrad/formats/error.h"
+
+namespace walkrad {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
+
+Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row)
+      for (int k = 0; k < 4; ++k) r[c * 4 + row] += a[k * 4 + row] * b[c * 4 + k];
+  return r;
+}
+
+Vec3 transform_point(const Mat4& m, const Vec3& p) {
+  return {m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
+          m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]};
+}
+Vec3 transform_vector(const Mat4& m, const Vec3& v) {
+  return {m[0] * v.x + m[4] * v.y + m[8] * v.z, m[1] * v.x + m[5] * v.y + m[9] * v.z, m[2] * v.x + m[6] * v.y + m[10] * v.z};
+}
+
+// The node's local matrix: its matrix, or T·R·S (glTF 2.0 §5.25).
+Mat4 local_matrix(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) {
+    Mat4 m;
+    std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
+    return m;
+  }
+  Mat4 t = identity(), r = identity(), s = identity();
+  if (n.translation.size() == 3) { t[12] = n.translation[0]; t[13] = n.translation[1]; t[14] = n.translation[2]; }
+  if (n.rotation.size() == 4) {
+    const double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+    r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
+         2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
+         2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
+         0, 0, 0, 1};
+  }
+  if (n.scale.size() == 3) { s[0] = n.scale[0]; s[5] = n.scale[1]; s[10] = n.scale[2]; }
+  return multiply(t, multiply(r, s));
+}
+
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// Average linear colour of a decoded RGBA8 image (base colour textures are sRGB-encoded).
+Vec3 average_texture(const tinygltf::Model& m, int texture) {
+  if (texture < 0 || texture >= int(m.textures.size())) return {1, 1, 1};
+  const int source = m.textures[texture].source;
+  if (source < 0 || source >= int(m.images.size())) return {1, 1, 1};
+  const tinygltf::Image& img = m.images[source];
+  if (img.image.empty() || img.component < 3 || img.bits != 8) return {1, 1, 1};
+  Vec3 sum;
+  const size_t pixels = img.image.size() / img.component;
+  for (size_t i = 0; i < pixels; ++i)
+    sum += Vec3(srgb_to_linear(img.image[i * img.component] / 255.0), srgb_to_linear(img.image[i * img.component + 1] / 255.0),
+                srgb_to_linear(img.image[i * img.component + 2] / 255.0));
+  return pixels ? sum / double(pixels) : Vec3{1, 1, 1};
+}
+
+Material convert_material(const tinygltf::Model& m, int index, Scene& scene, const std::string& file) {
+  const tinygltf::Material& gm = m.materials[index];
+  const std::string place = "materials[" + std::to_string(index) + "]";
+  Material mat;
+  mat.name = gm.name.empty() ? "material-" + std::to_string(index) : gm.name;
+  const auto& bc = gm.pbrMetallicRoughness.baseColorFactor;
+  mat.reflectance = {bc.size() > 0 ? bc[0] : 1.0, bc.size() > 1 ? bc[1] : 1.0, bc.size() > 2 ? bc[2] : 1.0};
+  if (gm.pbrMetallicRoughness.baseColorTexture.index >= 0)
+    mat.reflectance = mul(mat.reflectance, average_texture(m, gm.pbrMetallicRoughness.baseColorTexture.index));
+  double strength = 1.0;
+  const auto ext = gm.extensions.find("KHR_materials_emissive_strength");
+  if (ext != gm.extensions.end() && ext->second.Has("emissiveStrength"))
+    strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+  const auto& ef = gm.emissiveFactor;
+  const Vec3 radiance = Vec3(ef.size() > 0 ? ef[0] : 0, ef.size() > 1 ? ef[1] : 0, ef.size() > 2 ? ef[2] : 0) * strength;
+  mat.emission = radiance * kPi;  // E = π L for a Lambertian emitter
+  if (!is_finite(mat.reflectance) || !is_finite(mat.emission))
+    throw InputError(file, place, "colour factors must be finite");
+  if (std::min({mat.reflectance.x, mat.reflectance.y, mat.reflectance.z}) < 0 || max_component(mat.reflectance) > 1)
+    throw InputError(file, place, "baseColorFactor must lie in [0, 1]");
+  if (std::min({mat.emission.x, mat.emission.y, mat.emission.z}) < 0)
+    throw InputError(file, place, "emission must not be negative");
+  // ρ = 1 keeps energy forever and a closed scene never converges: cap it, and say so.
+  constexpr double kMaxReflectance = 0.99;
+  if (max_component(mat.reflectance) > kMaxReflectance) {
+    mat.reflectance = {std::min(mat.reflectance.x, kMaxReflectance), std::min(mat.reflectance.y, kMaxReflectance),
+                       std::min(mat.reflectance.z, kMaxReflectance)};
+    scene.warnings.push_back(place + " \"" + mat.name + "\": reflectance capped at 0.99");
+  }
+  return mat;
+}
+
+// Merges consecutive triangles (a, b) sharing an edge in opposite directions into one planar
+// convex quad: fewer, better-shaped elements (a quad splits into 4 quads, not slivers).
+bool merge_quad(const Polygon& a, const Polygon& b, Polygon& quad) {
+  if (a.material != b.material) return false;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 u = a.v[i], v = a.v[(i + 1) % 3], p = a.v[(i + 2) % 3];
+    for (int j = 0; j < 3; ++j) {
+      if (!(b.v[j] == v && b.v[(j + 1) % 3] == u)) continue;
+      const Vec3 q = b.v[(j + 2) % 3];
+      quad.v = {p, u, q, v};
+      quad.count = 4;
+      quad.material = a.material;
+      quad.source = a.source;
+      const Vec3 n = polygon_normal(a);
+      const double size = std::max(length(q - p), length(v - u));
+      if (std::fabs(dot(q - p, n)) > 1e-6 * size) return false;  // not planar
+      for (int k = 0; k < 4; ++k)  // convex: every corner turns the same way as the normal
+        if (dot(cross(quad.v[(k + 1) % 4] - quad.v[k], quad.v[(k + 2) % 4] - quad.v[(k + 1) % 4]), n) <= 0) return false;
+      return true;
+    }
+  }
+  return false;
+}
+
+struct Reader {
+  const tinygltf::Model& model;
+  const std::string& file;
+  Scene& scene;
+  std::vector<int> material_map;  // glTF material index → scene material (-1: default)
+  int default_material = -1;
+  std::vector<bool> on_path;      // nodes on the current traversal path (cycle check)
+
+  uint32_t material_for(int gltf_material) {
+    if (gltf_material >= 0 && gltf_material < int(model.materials.size())) return uint32_t(material_map[gltf_material]);
+    if (default_material < 0) {
+      // glTF's default material is white (baseColor 1); capped like any other at 0.99.
+      scene.materials.push_back({"default", {0.99, 0.99, 0.99}, {0, 0, 0}});
+      default_material = int(scene.materials.size()) - 1;
+    }
+    return uint32_t(default_material);
+  }
+
+  void add_mesh(int mesh_index, const Mat4& world) {
+    const tinygltf::Mesh& mesh = model.meshes[mesh_index];
+    for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+      const tinygltf::Primitive& prim = mesh.primitives[pi];
+      const std::string place = "meshes[" + std::to_string(mesh_index) + "].primitives[" + std::to_string(pi) + "]";
+      if (prim.mode == TINYGLTF_MODE_POINTS || prim.mode == TINYGLTF_MODE_LINE || prim.mode == TINYGLTF_MODE_LINE_LOOP ||
+          prim.mode == TINYGLTF_MODE_LINE_STRIP)
+        continue;  // points and lines carry no area: nothing to light
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
+        throw InputError(file, place, "triangle strips and fans are not supported", kExitMissingFeature);
+      const auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) throw InputError(file, place, "primitive has no POSITION");
+      std::vector<float> p;
+      gltf_access::append_floats(model, pos->second, 3, p, file, "POSITION");
+      std::vector<uint32_t> idx;
+      if (prim.indices >= 0) gltf_access::append_indices(model, prim.indices, 0, idx, file);
+      else for (uint32_t i = 0; i < p.size() / 3; ++i) idx.push_back(i);
+      if (idx.size() % 3) throw InputError(file, place, "index count is not a multiple of 3");
+      const uint32_t material = material_for(prim.material);
+
+      Polygon pending;
+      bool has_pending = false;
+      auto flush = [&] { if (has_pending) scene.polygons.push_back(pending); has_pending = false; };
+      for (size_t t = 0; t < idx.size(); t += 3) {
+        Polygon tri;
+        tri.count = 3;
+        tri.material = material;
+        tri.source = uint32_t(mesh_index);
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t i = idx[t + k];
+          if (size_t(i) * 3 + 2 >= p.size()) throw InputError(file, place, "index " + std::to_string(i) + " out of range");
+          tri.v[k] = transform_point(world, {p[i * 3], p[i * 3 + 1], p[i * 3 + 2]});
+          if (!is_finite(tri.v[k])) throw InputError(file, place, "vertex " + std::to_string(i) + " is not finite");
+        }
+        if (polygon_area(tri) <= 0) { ++scene.dropped_degenerate; continue; }
+        Polygon quad;
+        if (has_pending && pending.count == 3 && merge_quad(pending, tri, quad)) { pending = quad; continue; }
+        flush();
+        pending = tri;
+        has_pending = true;
+      }
+      flush();
+    }
+  }
+
+  void add_camera(int camera_index, const Mat4& world, int node) {
+    const tinygltf::Camera& cam = model.cameras[camera_index];
+    if (cam.type != "perspective") {
+      scene.warnings.push_back("cameras[" + std::to_string(camera_index) + "]: only perspective cameras become viewpoints");
+      return;
+    }
+    Viewpoint v;
+    v.name = model.nodes[node].name.empty() ? "camera-" + std::to_string(camera_index) : model.nodes[node].name;
+    v.position = transform_point(world, {0, 0, 0});
+    v.forward = normalize(transform_vector(world, {0, 0, -1}));
+    v.up = normalize(transform_vector(world, {0, 1, 0}));
+    v.yfov = cam.perspective.yfov;
+    v.aspect = cam.perspective.aspectRatio > 0 ? cam.perspective.aspectRatio : 1.0;
+    if (!is_finite(v.position) || length(v.forward) == 0 || !(v.yfov > 0 && v.yfov < kPi))
+      throw InputError(file, "cameras[" + std::to_string(camera_index) + "]", "degenerate camera");
+    scene.cameras.push_back(v);
+  }
+
+  void visit(int node, const Mat4& parent) {
+    if (node < 0 || node >= int(model.nodes.size())) throw InputError(file, "nodes", "node index " + std::to_string(node) + " out of range");
+    if (on_path[node]) throw InputError(file, "nodes[" + std::to_string(node) + "]", "node hierarchy has a cycle");
+    on_path[node] = true;
+    const tinygltf::Node& n = model.nodes[node];
+    const Mat4 world = multiply(parent, local_matrix(n));
+    if (n.mesh >= 0) {
+      if (n.mesh >= int(model.meshes.size())) throw InputError(file, "nodes[" + std::to_string(node) + "]", "mesh index out of range");
+      add_mesh(n.mesh, world);
+    }
+    if (n.camera >= 0 && n.camera < int(model.cameras.size())) add_camera(n.camera, world, node);
+    for (int child : n.children) visit(child, world);
+    on_path[node] = false;
+  }
+};
+
+}  // namespace
+
+Scene read_gltf(const std::string& path) {
+  const tinygltf::Model model = gltf_access::load(path, /*load_images=*/true);
+  Scene scene;
+  scene.source = path;
+  Reader r{model, path, scene, {}, -1, std::vector<bool>(model.nodes.size(), false)};
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    scene.materials.push_back(convert_material(model, int(i), scene, path));
+    r.material_map.push_back(int(i));
+  }
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int s = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size()) ? model.defaultScene : 0;
+    roots = model.scenes[s].nodes;
+  } else {
+    // No scene: every node that is nobody's child is a root.
+    std::vector<bool> child(model.nodes.size(), false);
+    for (const auto& n : model.nodes)
+      for (int c : n.children) if (c >= 0 && c < int(child.size())) child[c] = true;
+    for (size_t i = 0; i < model.nodes.size(); ++i) if (!child[i]) roots.push_back(int(i));
+  }
+  for (int root : roots) r.visit(root, identity());
+  if (scene.dropped_degenerate)
+    scene.warnings.push_back(std::to_string(scene.dropped_degenerate) + " zero-area triangles dropped");
+  if (scene.polygons.empty()) throw InputError(path, "", "the scene has no triangles");
+  return scene;
+}
+
+Scene read_scene(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".gltf" || ext == ".glb") return read_gltf(path);
+  throw InputError(path, "", "unknown scene format '" + ext + "' (walkrad reads .gltf and .glb)", kExitBadInput);
+}
+
+}  // namespace walkrad

@@ -1,0 +1,32 @@
+#include "walkrad/formats/scene.h"
+
+namespace walkrad {
+
+Vec3 polygon_area_normal(const Polygon& p) {
+  // Newell's method: exact for planar polygons, a best-fit normal for slightly non-planar quads.
+  Vec3 n;
+  for (int i = 0; i < p.count; ++i) n += cross(p.v[i], p.v[(i + 1) % p.count]);
+  return n;
+}
+
+Vec3 polygon_normal(const Polygon& p) { return normalize(polygon_area_normal(p)); }
+
+double polygon_area(const Polygon& p) { return 0.5 * length(polygon_area_normal(p)); }
+
+Vec3 polygon_centroid(const Polygon& p) {
+  if (p.count == 3) return (p.v[0] + p.v[1] + p.v[2]) / 3.0;
+  // Quad: area-weighted centroids of the two triangles of a fan.
+  const double a0 = length(cross(p.v[1] - p.v[0], p.v[2] - p.v[0]));
+  const double a1 = length(cross(p.v[2] - p.v[0], p.v[3] - p.v[0]));
+  const Vec3 c0 = (p.v[0] + p.v[1] + p.v[2]) / 3.0, c1 = (p.v[0] + p.v[2] + p.v[3]) / 3.0;
+  return a0 + a1 > 0 ? (c0 * a0 + c1 * a1) / (a0 + a1) : c0;
+}
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const Polygon& p : polygons)
+    for (int i = 0; i < p.count; ++i) b.extend(p.v[i]);
+  return b;
+}
+
+}  // namespace walkrad

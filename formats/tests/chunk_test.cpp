@@ -1,0 +1,75 @@
+// Chunks: what write_chunk writes, read_chunk reads back exactly; truncated files are refused.
+#include "walkrad/formats/chunk.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "walkrad/formats/chunk_writer.h"
+#include "walkrad/formats/error.h"
+
+namespace walkrad {
+namespace {
+
+ChunkMesh two_triangles() {
+  ChunkMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  m.colors = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 1.0f, 1.5f, 2.0f};
+  m.radiosity = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("walkrad-chunk-test-" + name)).string();
+}
+
+TEST(Chunk, RoundTripsExactly) {
+  const std::string path = temp_path("roundtrip.glb");
+  const ChunkMesh m = two_triangles();
+  const uint64_t bytes = write_chunk(path, m);
+  EXPECT_EQ(bytes, std::filesystem::file_size(path));
+  const ChunkMesh back = read_chunk(path);
+  EXPECT_EQ(back.positions, m.positions);
+  EXPECT_EQ(back.normals, m.normals);
+  EXPECT_EQ(back.colors, m.colors);
+  EXPECT_EQ(back.radiosity, m.radiosity);
+  EXPECT_EQ(back.indices, m.indices);
+  std::filesystem::remove(path);
+}
+
+TEST(Chunk, WritingIsDeterministic) {
+  const std::string a = temp_path("a.glb"), b = temp_path("b.glb");
+  write_chunk(a, two_triangles());
+  write_chunk(b, two_triangles());
+  std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+  const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+  EXPECT_EQ(sa, sb);
+  std::filesystem::remove(a);
+  std::filesystem::remove(b);
+}
+
+// Every strict prefix of a valid .glb is refused with an InputError naming the file, never a crash.
+TEST(Chunk, RefusesEveryTruncation) {
+  const std::string path = temp_path("whole.glb"), cut = temp_path("cut.glb");
+  write_chunk(path, two_triangles());
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  for (size_t n = 0; n < bytes.size(); ++n) {
+    std::ofstream(cut, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(n));
+    try {
+      read_chunk(cut);
+      ADD_FAILURE() << "accepted a prefix of " << n << " bytes";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), cut);
+    }
+  }
+  std::filesystem::remove(path);
+  std::filesystem::remove(cut);
+}
+
+}  // namespace
+}  // namespace walkrad

@@ -1,0 +1,62 @@
+// walkrad: the offline pipeline's command line. Thin: parses arguments, calls the stage, maps
+// failures to the exit codes of walkrad/formats/error.h (documented in README.md).
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "walkrad/formats/error.h"
+#include "walkrad/pipeline/bake.h"
+
+int main(int argc, char** argv) {
+  using namespace walkrad;
+  CLI::App app{"walkrad: precomputed diffuse global illumination for walkthroughs"};
+  app.require_subcommand(1);
+
+  BakeSettings bs;
+  CLI::App* bake_cmd = app.add_subcommand("bake", "bake a scene's radiosity into a folder of vertex-coloured glTF");
+  bake_cmd->add_option("scene", bs.scene, "scene file (.gltf, .glb)")->required();
+  bake_cmd->add_option("--views", bs.views, "walkthrough JSON (default: the scene's cameras)");
+  bake_cmd->add_option("-o,--output", bs.output, "output folder (default: <scene name>.bake)");
+  bake_cmd->add_option("--method", bs.method, "solver: classic")->capture_default_str();
+  bake_cmd->add_option("--element-size", bs.element_size, "element edge length in metres (default: scene diagonal / 30)")
+      ->check(CLI::NonNegativeNumber);
+  bake_cmd->add_option("--rays", bs.rays_per_point, "visibility rays per receiver quadrature point")
+      ->check(CLI::Range(1, 1024))->capture_default_str();
+  bake_cmd->add_option("--exposure", bs.exposure, "display colour = radiance × exposure (default: automatic)")
+      ->check(CLI::NonNegativeNumber);
+  bake_cmd->add_option("--threads", bs.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
+  bake_cmd->add_option("--tolerance", bs.tolerance, "solver stop: largest relative update")->capture_default_str();
+  bool quiet = false;
+  bake_cmd->add_flag("-q,--quiet", quiet, "no progress lines");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitBadArguments;
+  }
+
+  try {
+    if (bake_cmd->parsed()) {
+      bs.progress = !quiet;
+      if (bs.output.empty()) {
+        std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
+        bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
+      }
+      const BakeSummary s = bake(bs);
+      std::printf("walkrad: baked %s: %zu elements, %zu triangles, %zu viewpoints, exposure %.4g, %.2f s\n",
+                  s.output.c_str(), s.elements, s.triangles, s.viewpoints, s.exposure, s.seconds);
+    }
+    return kExitOk;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "walkrad: error: %s\n", e.what());
+    return e.code();
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "walkrad: error: %s\n", e.what());
+    return kExitOutputFailure;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "walkrad: internal error: %s\n", e.what());
+    return kExitInternal;
+  }
+}

@@ -1,0 +1,41 @@
+// bake: the offline pipeline end to end, as one function over plain settings (main() stays thin).
+// read scene + walkthrough → subdivide → form factors (contour formula × Embree visibility) →
+// Gauss-Seidel → exposure → vertex mesh → bake folder (manifest.json, chunk-0000.glb, report.json),
+// staged and swapped into place only when complete.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace walkrad {
+
+struct BakeSettings {
+  std::string scene;        // .gltf / .glb
+  std::string views;        // walkthrough JSON; empty: the scene's cameras
+  std::string output;       // the bake folder
+  std::string method = "classic";
+  double element_size = 0;  // metres; 0: the scene's diagonal / 30
+  int rays_per_point = 1;   // visibility rays per receiver quadrature point
+  double exposure = 0;      // 0: automatic from the viewpoints
+  int threads = 0;          // 0: all cores
+  double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity
+  int max_iterations = 10000;
+  bool progress = true;     // progress lines on stderr
+
+  nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
+};
+
+struct BakeSummary {
+  std::string output;
+  size_t elements = 0;
+  size_t triangles = 0;
+  size_t viewpoints = 0;
+  double exposure = 1;
+  double seconds = 0;
+};
+
+// Throws InputError (bad scene or walkthrough), OutputError (cannot write), std::runtime_error.
+BakeSummary bake(const BakeSettings& settings);
+
+}  // namespace walkrad

@@ -1,0 +1,41 @@
+// The classic method's form factor matrix (algorithms.md §2-3): F_ij for every pair of elements,
+// by quadrature of the point-to-polygon contour formula over the receiver, each quadrature point
+// weighted by the fraction of Embree rays from it to stratified points of the source that arrive.
+// Rows are computed in parallel, each with its own random streams: the matrix does not depend on
+// the thread count. Stored sparse (zero pairs are dropped), one row per receiver.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "walkrad/pipeline/ray_scene.h"
+#include "walkrad/pipeline/subdivision.h"
+
+namespace walkrad {
+
+struct FormFactorMatrix {
+  std::vector<uint64_t> row_start;  // row i holds entries [row_start[i], row_start[i+1])
+  std::vector<uint32_t> column;
+  std::vector<double> value;
+
+  size_t rows() const { return row_start.empty() ? 0 : row_start.size() - 1; }
+  double row_sum(size_t i) const;
+};
+
+struct FormFactorSettings {
+  int rays_per_point = 1;      // visibility rays from each receiver quadrature point
+  bool visibility = true;      // false: unoccluded form factors (no rays)
+};
+
+struct FormFactorCounts {
+  uint64_t pairs = 0;    // element pairs that face each other
+  uint64_t nonzero = 0;  // entries kept
+  uint64_t rays = 0;     // visibility rays cast
+};
+
+// progress(rows_done) is called from worker threads as rows finish (may be empty).
+FormFactorMatrix compute_form_factors(const Subdivision& sub, const RayScene* rays, const FormFactorSettings& settings,
+                                      FormFactorCounts& counts, const std::function<void(size_t)>& progress = {});
+
+}  // namespace walkrad

@@ -1,0 +1,42 @@
+// Unoccluded form factors (../shared/design/algorithms.md §3; Cohen & Wallace 1993, ch. 4).
+//
+// point_to_polygon: Lambert's contour formula, exact for a differential area and a polygon
+//   F_dA→P = (1/2π) Σ_k β_k n·(R_k × R_{k+1}) / |R_k × R_{k+1}|,
+//   after clipping the polygon to the receiver's upper hemisphere (the formula assumes the polygon
+//   lies entirely above the receiver's tangent plane). Independent of the polygon's winding.
+// element_to_element: (1/A_i) ∫_{A_i} F_dA→A_j dA by Gauss-Legendre quadrature over the receiver,
+//   its order chosen from the distance/size ratio (the kernel varies fastest where elements touch).
+#pragma once
+
+#include <vector>
+
+#include "walkrad/formats/scene.h"
+
+namespace walkrad {
+
+// Form factor from a differential area at p with unit normal n to the polygon. A point on the
+// polygon's plane, or a polygon entirely below the point's horizon, gets 0 (never NaN).
+double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly);
+
+// Clips poly to the half-space dot(x - p, n) >= 0; returns the clipped vertices (possibly empty).
+std::vector<Vec3> clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count);
+
+// A quadrature point on a receiver: position and weight (weights sum to the receiver's area).
+struct QuadraturePoint {
+  Vec3 position;
+  double weight;
+};
+
+// order×order Gauss-Legendre points over a triangle or quad (a triangle as a collapsed quad:
+// the Duffy transform, so every point lies strictly inside). order in [1, 8].
+std::vector<QuadraturePoint> quadrature_points(const Polygon& receiver, int order);
+
+// The quadrature order for a receiver of size `size` seeing a source at distance `distance`
+// (centroid to centroid): 2 when far, up to 8 when touching.
+int quadrature_order(double distance, double receiver_size, double source_size);
+
+// Unoccluded element-to-element form factor F_ij (receiver i, source j): the fraction of the
+// energy leaving i that arrives at j. Only j's front side is seen.
+double element_to_element(const Polygon& receiver, const Polygon& source);
+
+}  // namespace walkrad

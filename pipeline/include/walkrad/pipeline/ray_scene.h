@@ -1,0 +1,44 @@
+// RayScene: the input polygons in an Embree 3 BVH, for visibility and primary rays. Polygons go in as
+// one quad geometry (a triangle is a quad whose last vertex repeats, as Embree documents), so a hit's
+// primID is the polygon's index. The scene is built in robust mode (no ray slips through a shared
+// edge) and re-centred on its bounds so that float coordinates keep their digits far from the origin.
+#pragma once
+
+#include <cstdint>
+
+#include <embree3/rtcore.h>
+
+#include "walkrad/formats/scene.h"
+
+namespace walkrad {
+
+class RayScene {
+ public:
+  explicit RayScene(const Scene& scene);
+  ~RayScene();
+  RayScene(const RayScene&) = delete;
+  RayScene& operator=(const RayScene&) = delete;
+
+  // True if something blocks the open segment from `from` to `to` (end points excluded by the
+  // caller's offsets: see offset()).
+  bool occluded(const Vec3& from, const Vec3& to) const;
+
+  struct Hit {
+    bool hit = false;
+    uint32_t polygon = 0;
+    Vec3 position;
+  };
+  Hit intersect(const Vec3& origin, const Vec3& direction) const;
+
+  // The distance by which ray end points leave their surfaces: small against the scene, large
+  // against float rounding at the scene's scale (docs/numerics.md).
+  double offset() const { return offset_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  Vec3 origin_;  // subtracted from every coordinate before it reaches Embree
+  double offset_ = 0;
+};
+
+}  // namespace walkrad

@@ -1,0 +1,17 @@
+// From a solution on elements to a displayable mesh: vertex radiosity by area-weighted averaging of
+// the elements around each grid vertex (Gouraud, algorithms.md §8), per input polygon, so colours do
+// not bleed across a material boundary. Quads become two triangles.
+#pragma once
+
+#include <vector>
+
+#include "walkrad/formats/chunk.h"
+#include "walkrad/pipeline/subdivision.h"
+
+namespace walkrad {
+
+// radiosity: B per element. exposure: display colour = B/π × exposure, clamped to [0, 1] (what a
+// display shows; lights saturate). _RADIOSITY keeps the unclamped physical value.
+ChunkMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosity, double exposure);
+
+}  // namespace walkrad

@@ -1,0 +1,33 @@
+// Small generated scenes with exact answers, shared by the pipeline's tests.
+#pragma once
+
+#include <utility>
+
+#include "walkrad/formats/scene.h"
+
+namespace walkrad::test {
+
+inline Polygon quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material = 0) {
+  Polygon p;
+  p.v = {a, b, c, d};
+  p.count = 4;
+  p.material = material;
+  return p;
+}
+
+// A closed box [0,s]³ whose six faces face inwards, all of one material (reflectance rho,
+// emission e): the furnace, where B = E / (1 − ρ) exactly.
+inline Scene closed_box(double s, Vec3 rho, Vec3 e) {
+  Scene scene;
+  scene.source = "closed box";
+  scene.materials.push_back({"furnace", rho, e});
+  const Vec3 o(0, 0, 0), x(s, 0, 0), y(0, s, 0), z(0, 0, s);
+  scene.polygons = {quad(o, x, x + z, z), quad(y, y + z, y + x + z, y + x), quad(o, y, y + x, x),
+                    quad(z, z + x, z + x + y, z + y), quad(o, z, z + y, y), quad(x, x + y, x + y + z, x + z)};
+  const Vec3 centre = (x + y + z) * 0.5;
+  for (Polygon& p : scene.polygons)  // face inwards
+    if (dot(polygon_normal(p), centre - polygon_centroid(p)) < 0) std::swap(p.v[1], p.v[3]);
+  return scene;
+}
+
+}  // namespace walkrad::test
