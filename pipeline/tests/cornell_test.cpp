@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "walkrad/formats/chunk.h"
@@ -34,11 +36,13 @@ std::string read_bytes(const std::string& path) {
 class CornellBake : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::path(testing::TempDir()) / "walkrad-cornell";
+    // One folder per process: ctest runs each test in its own process, possibly at the same time.
+    dir_ = fs::path(testing::TempDir()) / ("walkrad-cornell-" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     bake(coarse((dir_ / "t1").string(), 1));
     bake(coarse((dir_ / "t2").string(), 2));
   }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
   static fs::path dir_;
 };
 fs::path CornellBake::dir_;

@@ -1,0 +1,82 @@
+#include "walkrad/pipeline/shaft.h"
+
+#include <cmath>
+
+namespace walkrad {
+
+Shaft::Shaft(const Bounds& a, const Bounds& b) {
+  hull_ = a;
+  hull_.extend(b);
+  // For each pair of axes (k, l) and each corner direction (sk, sl) of the hull's cross-section: if
+  // one box alone reaches the hull along k and the other alone along l, the hull's corner is
+  // empty, and the plane through the two boxes' corner edges (parallel to the third axis) cuts it off.
+  for (int k = 0; k < 3; ++k)
+    for (int l = k + 1; l < 3; ++l)
+      for (int sk = 0; sk < 2; ++sk)
+        for (int sl = 0; sl < 2; ++sl) {
+          auto extreme = [](const Bounds& box, int axis, int s) { return s ? box.hi[axis] : box.lo[axis]; };
+          auto further = [](double x, double y, int s) { return s ? x > y : x < y; };
+          const bool a_k = further(extreme(a, k, sk), extreme(b, k, sk), sk);
+          const bool b_k = further(extreme(b, k, sk), extreme(a, k, sk), sk);
+          const bool a_l = further(extreme(a, l, sl), extreme(b, l, sl), sl);
+          const bool b_l = further(extreme(b, l, sl), extreme(a, l, sl), sl);
+          if (!((a_k && b_l) || (b_k && a_l))) continue;
+          // Corner points of each box in the (k, l) plane.
+          const double ak = extreme(a, k, sk), al = extreme(a, l, sl), bk = extreme(b, k, sk), bl = extreme(b, l, sl);
+          // Line through (ak, al) and (bk, bl); normal perpendicular, pointing to the (sk, sl) corner.
+          double nk = -(bl - al), nl = bk - ak;
+          const double sign_k = sk ? 1.0 : -1.0, sign_l = sl ? 1.0 : -1.0;
+          if (nk * sign_k + nl * sign_l < 0) { nk = -nk; nl = -nl; }
+          const double len = std::sqrt(nk * nk + nl * nl);
+          if (len == 0) continue;
+          Plane p;
+          p.n[k] = nk / len;
+          p.n[l] = nl / len;
+          p.d = (p.n[k] * ak + p.n[l] * al);
+          plane_[planes_++] = p;
+        }
+}
+
+bool Shaft::overlaps(const Bounds& box) const {
+  for (int k = 0; k < 3; ++k)
+    if (box.hi[k] < hull_.lo[k] || box.lo[k] > hull_.hi[k]) return false;
+  for (int i = 0; i < planes_; ++i) {
+    const Plane& p = plane_[i];
+    // The box's corner furthest inside (most negative along n): outside only if even it is outside.
+    const Vec3 inner(p.n.x >= 0 ? box.lo.x : box.hi.x, p.n.y >= 0 ? box.lo.y : box.hi.y, p.n.z >= 0 ? box.lo.z : box.hi.z);
+    // A relative margin keeps touching boxes (a wall on the floor) in, against rounding.
+    if (dot(p.n, inner) > p.d + 1e-9 * (1.0 + std::fabs(p.d))) return false;
+  }
+  return true;
+}
+
+std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b) {
+  std::vector<uint32_t> out;
+  if (tree.nodes.empty()) return out;
+  std::vector<int32_t> stack = {0};
+  while (!stack.empty()) {
+    const ClusterNode& node = tree.nodes[stack.back()];
+    stack.pop_back();
+    if (!shaft.overlaps(node.bounds)) continue;
+    if (!node.leaf()) {
+      stack.push_back(node.child[1]);  // child 0 on top: polygons come out in tree order
+      stack.push_back(node.child[0]);
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const uint32_t p = tree.polygons[i];
+      if (p != exclude_a && p != exclude_b && shaft.overlaps(tree.polygon_bounds[p])) out.push_back(p);
+    }
+  }
+  return out;
+}
+
+std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                        uint32_t exclude_a, uint32_t exclude_b) {
+  std::vector<uint32_t> out;
+  for (uint32_t p : candidates)
+    if (p != exclude_a && p != exclude_b && shaft.overlaps(tree.polygon_bounds[p])) out.push_back(p);
+  return out;
+}
+
+}  // namespace walkrad

@@ -1,0 +1,61 @@
+// Renders a real bake (the Cornell box) through Player, the path walkrad-view takes. Skipped until
+// the bake exists: CMake's WALKRAD_RUNTIME_TEST_BAKE names it, the environment variable of the same
+// name overrides it.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "walkrad/runtime/framebuffer.h"
+#include "walkrad/runtime/headless_context.h"
+#include "walkrad/runtime/player.h"
+
+namespace walkrad {
+namespace {
+
+std::string test_bake_dir() {
+  const char* env = std::getenv("WALKRAD_RUNTIME_TEST_BAKE");
+  return env && *env ? env : WALKRAD_RUNTIME_TEST_BAKE;
+}
+
+// Mean of (red − green) over the columns [first, last) of the image: positive where red dominates.
+double redness(const Image& image, int first, int last) {
+  double sum = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = first; x < last; ++x) sum += double(image.pixel(x, y)[0]) - double(image.pixel(x, y)[1]);
+  return sum / (double(last - first) * image.height);
+}
+
+TEST(BakeRender, CornellBoxShowsTheRedWallOnTheLeft) {
+  const std::string dir = test_bake_dir();
+  if (!std::filesystem::exists(std::filesystem::path(dir) / "manifest.json"))
+    GTEST_SKIP() << "no bake at " << dir << " (set WALKRAD_RUNTIME_TEST_BAKE to a Cornell box bake)";
+
+  HeadlessContext context;
+  Player player = Player::open(dir);
+  ASSERT_FALSE(player.manifest().viewpoints.empty()) << dir << ": the bake has no viewpoints";
+  constexpr int kSize = 96;
+  Framebuffer target(kSize, kSize);
+  target.bind();
+  player.draw(player.manifest().viewpoints.front(), kSize, kSize);
+  const Image image = target.read_pixels();
+
+  size_t lit = 0;
+  for (size_t i = 0; i < image.rgba.size(); i += 4)
+    if (image.rgba[i] > 16 || image.rgba[i + 1] > 16 || image.rgba[i + 2] > 16) ++lit;
+  EXPECT_GT(lit, size_t(kSize * kSize) / 4) << "the frame is (nearly) black";
+
+  const double left = redness(image, 0, kSize / 3), right = redness(image, kSize - kSize / 3, kSize);
+  EXPECT_GT(left, right + 20.0) << "left third red − green " << left << ", right third " << right;
+
+  const RenderStats& stats = player.stats();
+  EXPECT_EQ(stats.chunks_resident, player.manifest().chunks.size());
+  EXPECT_EQ(stats.chunks_total, player.manifest().chunks.size());
+  EXPECT_GT(stats.bytes_loaded, 0u);
+  EXPECT_EQ(stats.frame_cpu_ms.size(), 1u);
+  EXPECT_GE(stats.time_to_first_frame_ms, stats.open_ms);
+}
+
+}  // namespace
+}  // namespace walkrad
