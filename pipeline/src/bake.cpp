@@ -15,6 +15,8 @@
 #include "walkrad/formats/gltf_reader.h"
 #include "walkrad/formats/manifest.h"
 #include "walkrad/formats/walkthrough.h"
+#include "walkrad/pipeline/cluster_tree.h"
+#include "walkrad/pipeline/contact_split.h"
 #include "walkrad/pipeline/exposure.h"
 #include "walkrad/pipeline/form_factor_matrix.h"
 #include "walkrad/pipeline/gauss_seidel.h"
@@ -107,30 +109,33 @@ BakeSummary bake(const BakeSettings& s) {
 
   Phases phases(s.progress);
   phases.start("read");
-  const Scene scene = read_scene(s.scene);
-  std::vector<Viewpoint> views = s.views.empty() ? scene.cameras : read_walkthrough(s.views);
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
+  const Scene input = read_scene(s.scene);
+  std::vector<Viewpoint> views = s.views.empty() ? input.cameras : read_walkthrough(s.views);
+  for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
   bool any_emitter = false;
-  for (const Polygon& p : scene.polygons) any_emitter = any_emitter || scene.materials[p.material].emits();
+  for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
   if (!any_emitter) throw InputError(s.scene, "", "the scene has no emitter (no material with emission): nothing to bake");
   // Fail on an unwritable destination before the long work, not after it.
   StagedOutput out(s.output);
 
   phases.start("subdivide");
-  const Bounds bounds = scene.bounds();
+  const Bounds bounds = input.bounds();
+  ContactSplitStats split_stats;
+  const Scene scene = split_contacts(input, split_stats);
   const double element_size = s.element_size > 0 ? s.element_size : length(bounds.diagonal()) / 30.0;
   const Subdivision sub = subdivide_uniform(scene, element_size);
   const size_t n = sub.elements.size();
 
   phases.start("form factors");
   const RayScene rays(scene);
+  const ClusterTree tree = build_cluster_tree(scene);
   FormFactorSettings ffs;
   ffs.rays_per_point = std::max(1, s.rays_per_point);
   FormFactorCounts counts;
   FormFactorMatrix f;
   {
     Progress progress("form factors", n, s.progress);
-    f = compute_form_factors(sub, &rays, ffs, counts, [&](size_t done) { progress.update(done); });
+    f = compute_form_factors(sub, &rays, &tree, ffs, counts, [&](size_t done) { progress.update(done); });
   }
 
   phases.start("solve");
@@ -202,14 +207,16 @@ BakeSummary bake(const BakeSettings& s) {
       {"phases", phases.list()},
       {"total_seconds", seconds},
       {"counts",
-       {{"polygons", scene.polygons.size()}, {"elements", n}, {"form_factor_pairs", counts.pairs},
-        {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"exposure_rays", exposure_rays},
+       {{"input_polygons", input.polygons.size()}, {"polygons", scene.polygons.size()},
+        {"contact_cuts", split_stats.cuts}, {"elements", n}, {"form_factor_pairs", counts.pairs},
+        {"unoccluded_pairs", counts.unoccluded}, {"form_factor_entries", counts.nonzero},
+        {"visibility_rays", counts.rays}, {"exposure_rays", exposure_rays},
         {"iterations", stats.iterations}, {"triangles", mesh.triangle_count()}, {"viewpoints", views.size()},
-        {"dropped_degenerate", scene.dropped_degenerate}}},
+        {"dropped_degenerate", input.dropped_degenerate}}},
       {"solver", {{"converged", stats.converged}, {"last_update", stats.last_update}, {"tolerance", s.tolerance}}},
       {"energy", {{"emitted_w", vec_json(energy.emitted)}, {"absorbed_w", vec_json(energy.absorbed)},
                   {"residual_w", vec_json(energy.residual)}}},
-      {"warnings", scene.warnings},
+      {"warnings", input.warnings},
   };
   write_json(out.path("report.json"), report);
   out.commit();

@@ -74,6 +74,31 @@ bool RayScene::occluded(const Vec3& from, const Vec3& to) const {
   return ray.tfar < 0.0f;  // Embree marks an occluded ray with tfar = -inf
 }
 
+void RayScene::occluded(const Segment* segments, size_t count, uint8_t* blocked) const {
+  constexpr size_t kBatch = 64;
+  RTCRay rays[kBatch];
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // a link's rays run between two small patches
+  for (size_t base = 0; base < count; base += kBatch) {
+    const size_t n = std::min(kBatch, count - base);
+    for (size_t k = 0; k < n; ++k) {
+      const Vec3 o = segments[base + k].from - origin_, d = segments[base + k].to - segments[base + k].from;
+      RTCRay& r = rays[k];
+      r.org_x = float(o.x); r.org_y = float(o.y); r.org_z = float(o.z);
+      r.dir_x = float(d.x); r.dir_y = float(d.y); r.dir_z = float(d.z);
+      r.tnear = 0.0f;
+      r.tfar = 1.0f;
+      r.time = 0.0f;
+      r.mask = 0xFFFFFFFFu;
+      r.id = unsigned(k);
+      r.flags = 0;
+    }
+    rtcOccluded1M(scene_, &ctx, rays, unsigned(n), sizeof(RTCRay));
+    for (size_t k = 0; k < n; ++k) blocked[base + k] = rays[k].tfar < 0.0f ? 1 : 0;
+  }
+}
+
 RayScene::Hit RayScene::intersect(const Vec3& origin, const Vec3& direction) const {
   const Vec3 o = origin - origin_;
   RTCRayHit rh{};

@@ -38,14 +38,21 @@ Shaft::Shaft(const Bounds& a, const Bounds& b) {
 }
 
 bool Shaft::overlaps(const Bounds& box) const {
+  // Touching is not overlapping: a polygon that only touches the hull's boundary (the wall beside a
+  // floor element) cannot block a segment between the two boxes' interiors, and ray end points are
+  // offset off their surfaces into the hull. The margin absorbs rounding at the scene's scale.
+  const double margin = 1e-9 * (1.0 + std::fabs(hull_.lo.x) + std::fabs(hull_.hi.x) + std::fabs(hull_.lo.y) +
+                                std::fabs(hull_.hi.y) + std::fabs(hull_.lo.z) + std::fabs(hull_.hi.z));
   for (int k = 0; k < 3; ++k)
-    if (box.hi[k] < hull_.lo[k] || box.lo[k] > hull_.hi[k]) return false;
+    if (box.hi[k] <= hull_.lo[k] + margin || box.lo[k] >= hull_.hi[k] - margin) {
+      // A flat hull (two coplanar elements) has zero thickness: only a box crossing its plane counts.
+      if (hull_.hi[k] - hull_.lo[k] > 2 * margin || box.hi[k] <= hull_.lo[k] || box.lo[k] >= hull_.hi[k]) return false;
+    }
   for (int i = 0; i < planes_; ++i) {
     const Plane& p = plane_[i];
-    // The box's corner furthest inside (most negative along n): outside only if even it is outside.
+    // The box's corner furthest inside (most negative along n): outside if even it is not inside.
     const Vec3 inner(p.n.x >= 0 ? box.lo.x : box.hi.x, p.n.y >= 0 ? box.lo.y : box.hi.y, p.n.z >= 0 ? box.lo.z : box.hi.z);
-    // A relative margin keeps touching boxes (a wall on the floor) in, against rounding.
-    if (dot(p.n, inner) > p.d + 1e-9 * (1.0 + std::fabs(p.d))) return false;
+    if (dot(p.n, inner) >= p.d - margin) return false;
   }
   return true;
 }

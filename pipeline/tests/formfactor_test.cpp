@@ -81,7 +81,7 @@ TEST(FormFactor, RowsOfAClosedCubeSumToOne) {
   const Subdivision sub = subdivide_uniform(box, 0.25);
   ASSERT_EQ(sub.elements.size(), 96u);
   FormFactorCounts counts;
-  const FormFactorMatrix f = compute_form_factors(sub, nullptr, {}, counts);
+  const FormFactorMatrix f = compute_form_factors(sub, nullptr, nullptr, {}, counts);
   double worst = 0;
   for (size_t i = 0; i < f.rows(); ++i) worst = std::max(worst, std::fabs(f.row_sum(i) - 1.0));
   EXPECT_LT(worst, 1e-3);

@@ -25,7 +25,7 @@ TEST_P(Furnace, ConvergesToEOverOneMinusRho) {
   FormFactorCounts counts;
   FormFactorSettings settings;
   settings.rays_per_point = 2;
-  const FormFactorMatrix f = compute_form_factors(sub, &rays, settings, counts);
+  const FormFactorMatrix f = compute_form_factors(sub, &rays, /*tree=*/nullptr, settings, counts);
   EXPECT_GT(counts.rays, 0u);
 
   std::vector<Vec3> rhos(sub.elements.size(), {rho, rho, rho}), es(sub.elements.size(), e);

@@ -1,5 +1,5 @@
 // bake: the offline pipeline end to end, as one function over plain settings (main() stays thin).
-// read scene + walkthrough → subdivide → form factors (contour formula × Embree visibility) →
+// read scene + walkthrough → split polygons at contacts → subdivide → form factors (contour formula × Embree visibility) →
 // Gauss-Seidel → exposure → vertex mesh → bake folder (manifest.json, chunk-0000.glb, report.json),
 // staged and swapped into place only when complete.
 #pragma once

@@ -3,12 +3,16 @@
 // weighted by the fraction of Embree rays from it to stratified points of the source that arrive.
 // Rows are computed in parallel, each with its own random streams: the matrix does not depend on
 // the thread count. Stored sparse (zero pairs are dropped), one row per receiver.
+// Shaft culling (shaft.h) decides which pairs need rays at all: per pair of input polygons, the
+// polygons that may stand between them; per pair of elements, that list filtered by the elements'
+// own shaft. An empty list means visibility 1 without a ray.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <vector>
 
+#include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/ray_scene.h"
 #include "walkrad/pipeline/subdivision.h"
 
@@ -30,12 +34,15 @@ struct FormFactorSettings {
 
 struct FormFactorCounts {
   uint64_t pairs = 0;    // element pairs that face each other
+  uint64_t unoccluded = 0;  // pairs whose shaft holds no candidate occluder: no rays cast
   uint64_t nonzero = 0;  // entries kept
   uint64_t rays = 0;     // visibility rays cast
 };
 
-// progress(rows_done) is called from worker threads as rows finish (may be empty).
-FormFactorMatrix compute_form_factors(const Subdivision& sub, const RayScene* rays, const FormFactorSettings& settings,
-                                      FormFactorCounts& counts, const std::function<void(size_t)>& progress = {});
+// rays: null for unoccluded form factors. tree: the cluster tree over the same scene's polygons, for
+// shaft culling; null casts rays for every pair. progress(rows_done) is called from worker threads.
+FormFactorMatrix compute_form_factors(const Subdivision& sub, const RayScene* rays, const ClusterTree* tree,
+                                      const FormFactorSettings& settings, FormFactorCounts& counts,
+                                      const std::function<void(size_t)>& progress = {});
 
 }  // namespace walkrad

@@ -23,6 +23,13 @@ class RayScene {
   // caller's offsets: see offset()).
   bool occluded(const Vec3& from, const Vec3& to) const;
 
+  // Occlusion of many segments at once through Embree's stream interface (rtcOccluded1M, coherent):
+  // blocked[k] = 1 if segment k (from[k] → to[k]) is blocked. Same answers as occluded(), faster.
+  struct Segment {
+    Vec3 from, to;
+  };
+  void occluded(const Segment* segments, size_t count, uint8_t* blocked) const;
+
   struct Hit {
     bool hit = false;
     uint32_t polygon = 0;
