@@ -4,8 +4,8 @@
 // Rows are computed in parallel, each with its own random streams: the matrix does not depend on
 // the thread count. Stored sparse (zero pairs are dropped), one row per receiver.
 // Shaft culling (shaft.h) decides which pairs need rays at all: per pair of input polygons, the
-// polygons that may stand between them; per pair of elements, that list filtered by the elements'
-// own shaft. An empty list means visibility 1 without a ray.
+// polygons that may stand between them; per receiver element and source polygon, that list filtered
+// by their own shaft. An empty list means visibility 1 without a ray.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,8 @@ struct FormFactorMatrix {
 struct FormFactorSettings {
   int rays_per_point = 1;      // visibility rays from each receiver quadrature point
   bool visibility = true;      // false: unoccluded form factors (no rays)
+  // When set, every visibility segment cast is appended here in row order (bench/ replays them).
+  std::vector<RayScene::Segment>* record = nullptr;
 };
 
 struct FormFactorCounts {
