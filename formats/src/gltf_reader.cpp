@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
 
 #include "gltf_access.h"
 #include "walkrad/formats/error.h"
@@ -118,7 +117,11 @@ bool merge_quad(const Polygon& a, const Polygon& b, Polygon& quad) {
       quad.source = a.source;
       const Vec3 n = polygon_normal(a);
       const double size = std::max(length(q - p), length(v - u));
-      if (std::fabs(dot(q - p, n)) > 1e-6 * size) return false;  // not planar
+      // Planar to 1e-6 of the quad's size, or to the rounding of float positions (2^-23 of the
+      // coordinates' magnitude, twice): a small planar quad far from the origin stays one quad.
+      double magnitude = 0;
+      for (const Vec3& c : {p, u, q, v}) magnitude = std::max({magnitude, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+      if (std::fabs(dot(q - p, n)) > 1e-6 * size + 2.4e-7 * magnitude) return false;  // not planar
       for (int k = 0; k < 4; ++k)  // convex: every corner turns the same way as the normal
         if (dot(cross(quad.v[(k + 1) % 4] - quad.v[k], quad.v[(k + 2) % 4] - quad.v[(k + 1) % 4]), n) <= 0) return false;
       return true;
@@ -251,13 +254,6 @@ Scene read_gltf(const std::string& path) {
     scene.warnings.push_back(std::to_string(scene.dropped_degenerate) + " zero-area triangles dropped");
   if (scene.polygons.empty()) throw InputError(path, "", "the scene has no triangles");
   return scene;
-}
-
-Scene read_scene(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".gltf" || ext == ".glb") return read_gltf(path);
-  throw InputError(path, "", "unknown scene format '" + ext + "' (walkrad reads .gltf and .glb)", kExitBadInput);
 }
 
 }  // namespace walkrad

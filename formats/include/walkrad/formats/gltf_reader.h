@@ -10,12 +10,10 @@
 #include <string>
 
 #include "walkrad/formats/scene.h"
+#include "walkrad/formats/scene_reader.h"  // read_scene (by extension), declared here before
 
 namespace walkrad {
 
 Scene read_gltf(const std::string& path);
-
-// Reads a scene by extension (.gltf, .glb; .mgf later). Throws InputError for an unknown extension.
-Scene read_scene(const std::string& path);
 
 }  // namespace walkrad

@@ -1,0 +1,14 @@
+// read_scene: any scene file walkrad reads, chosen by extension — .gltf and .glb (gltf_reader.h),
+// .mgf (mgf_reader.h) — as the plain scene arrays of scene.h.
+#pragma once
+
+#include <string>
+
+#include "walkrad/formats/scene.h"
+
+namespace walkrad {
+
+// Throws InputError for an unknown extension and whatever the format's reader throws.
+Scene read_scene(const std::string& path);
+
+}  // namespace walkrad

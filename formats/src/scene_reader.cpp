@@ -1,0 +1,22 @@
+// read_scene (scene_reader.h): dispatch by file extension.
+#include "walkrad/formats/scene_reader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/gltf_reader.h"
+#include "walkrad/formats/mgf_reader.h"
+
+namespace walkrad {
+
+Scene read_scene(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".gltf" || ext == ".glb") return read_gltf(path);
+  if (ext == ".mgf") return read_mgf(path);
+  throw InputError(path, "", "unknown scene format '" + ext + "' (walkrad reads .gltf, .glb and .mgf)", kExitBadInput);
+}
+
+}  // namespace walkrad

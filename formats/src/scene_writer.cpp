@@ -1,0 +1,215 @@
+// write_scene_gltf (scene_writer.h), through tinygltf's writer (as chunk_writer.cpp).
+#include "walkrad/formats/scene_writer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <tiny_gltf.h>
+
+#include "walkrad/formats/error.h"
+
+namespace walkrad {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Appends a tightly packed view + accessor of float VEC3 (with bounds) or uint32 SCALAR data.
+template <typename T>
+int append_accessor(tinygltf::Model& model, const std::vector<T>& data, bool positions) {
+  auto& buf = model.buffers[0].data;
+  const size_t offset = buf.size();
+  buf.resize(offset + data.size() * sizeof(T));
+  if (!data.empty()) std::memcpy(buf.data() + offset, data.data(), data.size() * sizeof(T));
+  while (buf.size() % 4) buf.push_back(0);
+
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = data.size() * sizeof(T);
+  view.target = positions ? TINYGLTF_TARGET_ARRAY_BUFFER : TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+  model.bufferViews.push_back(view);
+
+  tinygltf::Accessor acc;
+  acc.bufferView = int(model.bufferViews.size()) - 1;
+  acc.componentType = positions ? TINYGLTF_COMPONENT_TYPE_FLOAT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  acc.type = positions ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_SCALAR;
+  acc.count = positions ? data.size() / 3 : data.size();
+  if (positions) {
+    acc.minValues.assign(3, INFINITY);
+    acc.maxValues.assign(3, -INFINITY);
+    for (size_t i = 0; i < data.size(); ++i) {
+      acc.minValues[i % 3] = std::min(acc.minValues[i % 3], double(data[i]));
+      acc.maxValues[i % 3] = std::max(acc.maxValues[i % 3], double(data[i]));
+    }
+  }
+  model.accessors.push_back(acc);
+  return int(model.accessors.size()) - 1;
+}
+
+// True when read_gltf would merge triangle b into triangle a (b holds an edge of a reversed).
+bool shares_reversed_edge(const Polygon& a, const Polygon& b) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a.v[i] == b.v[(j + 1) % 3] && a.v[(i + 1) % 3] == b.v[j]) return true;
+  return false;
+}
+
+tinygltf::Material material(const Material& m) {
+  tinygltf::Material g;
+  g.name = m.name;
+  g.pbrMetallicRoughness.baseColorFactor = {m.reflectance.x, m.reflectance.y, m.reflectance.z, 1.0};
+  g.pbrMetallicRoughness.metallicFactor = 0.0;
+  g.pbrMetallicRoughness.roughnessFactor = 1.0;
+  const Vec3 radiance = m.emission / kPi;  // E = π L for a Lambertian emitter
+  const double strength = max_component(radiance);
+  if (strength > 1) {
+    g.emissiveFactor = {radiance.x / strength, radiance.y / strength, radiance.z / strength};
+    tinygltf::Value::Object ext;
+    ext["emissiveStrength"] = tinygltf::Value(strength);
+    g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(ext);
+  } else {
+    g.emissiveFactor = {radiance.x, radiance.y, radiance.z};
+  }
+  return g;
+}
+
+// The rotation taking glTF's camera frame (-Z forward, +Y up) to the viewpoint's, as a unit quaternion.
+std::vector<double> camera_rotation(const Viewpoint& v) {
+  const Vec3 back = -normalize(v.forward);
+  const Vec3 right = normalize(cross(v.up, back));
+  const Vec3 up = cross(back, right);
+  const double m[3][3] = {{right.x, up.x, back.x}, {right.y, up.y, back.y}, {right.z, up.z, back.z}};
+  double x, y, z, w;
+  const double trace = m[0][0] + m[1][1] + m[2][2];
+  if (trace > 0) {
+    const double s = 2 * std::sqrt(1 + trace);
+    w = s / 4; x = (m[2][1] - m[1][2]) / s; y = (m[0][2] - m[2][0]) / s; z = (m[1][0] - m[0][1]) / s;
+  } else if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+    const double s = 2 * std::sqrt(1 + m[0][0] - m[1][1] - m[2][2]);
+    w = (m[2][1] - m[1][2]) / s; x = s / 4; y = (m[0][1] + m[1][0]) / s; z = (m[0][2] + m[2][0]) / s;
+  } else if (m[1][1] > m[2][2]) {
+    const double s = 2 * std::sqrt(1 + m[1][1] - m[0][0] - m[2][2]);
+    w = (m[0][2] - m[2][0]) / s; x = (m[0][1] + m[1][0]) / s; y = s / 4; z = (m[1][2] + m[2][1]) / s;
+  } else {
+    const double s = 2 * std::sqrt(1 + m[2][2] - m[0][0] - m[1][1]);
+    w = (m[1][0] - m[0][1]) / s; x = (m[0][2] + m[2][0]) / s; y = (m[1][2] + m[2][1]) / s; z = s / 4;
+  }
+  const double n = std::sqrt(x * x + y * y + z * z + w * w);
+  return {x / n, y / n, z / n, w / n};
+}
+
+}  // namespace
+
+void write_scene_gltf(const Scene& scene, const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".glb" && ext != ".gltf") throw std::invalid_argument(path + ": the output must end in .glb or .gltf");
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "walkrad";
+  model.buffers.resize(1);
+  tinygltf::Scene gscene;
+  for (const Material& m : scene.materials) {
+    model.materials.push_back(material(m));
+    if (model.materials.back().extensions.count("KHR_materials_emissive_strength") &&
+        model.extensionsUsed.empty())
+      model.extensionsUsed.push_back("KHR_materials_emissive_strength");
+  }
+
+  for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
+    // Quads in one primitive; triangles in as few primitives as keep read_gltf from merging neighbours.
+    std::vector<const Polygon*> quads;
+    std::vector<std::vector<const Polygon*>> chains;
+    Bounds bounds;
+    for (const Polygon& p : scene.polygons) {
+      if (p.material != mi) continue;
+      for (int k = 0; k < p.count; ++k) bounds.extend(p.v[k]);
+      if (p.count == 4) {
+        quads.push_back(&p);
+        continue;
+      }
+      size_t chain = 0;
+      while (chain < chains.size() && shares_reversed_edge(*chains[chain].back(), p)) ++chain;
+      if (chain == chains.size()) chains.emplace_back();
+      chains[chain].push_back(&p);
+    }
+    if (bounds.empty()) continue;
+    const Vec3 centre = bounds.center();
+    if (!quads.empty()) chains.insert(chains.begin(), quads);
+
+    tinygltf::Mesh mesh;
+    mesh.name = scene.materials[mi].name;
+    for (const auto& chain : chains) {
+      std::vector<float> positions;
+      std::vector<uint32_t> indices;
+      for (const Polygon* p : chain) {
+        const uint32_t base = uint32_t(positions.size() / 3);
+        for (int k = 0; k < p->count; ++k) {
+          const Vec3 q = p->v[k] - centre;
+          positions.insert(positions.end(), {float(q.x), float(q.y), float(q.z)});
+        }
+        indices.insert(indices.end(), {base, base + 1, base + 2});
+        if (p->count == 4) indices.insert(indices.end(), {base, base + 2, base + 3});
+      }
+      tinygltf::Primitive prim;
+      prim.mode = TINYGLTF_MODE_TRIANGLES;
+      prim.material = int(mi);
+      prim.attributes["POSITION"] = append_accessor(model, positions, true);
+      prim.indices = append_accessor(model, indices, false);
+      mesh.primitives.push_back(prim);
+    }
+    model.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = mesh.name;
+    node.mesh = int(model.meshes.size()) - 1;
+    node.translation = {centre.x, centre.y, centre.z};
+    model.nodes.push_back(node);
+    gscene.nodes.push_back(int(model.nodes.size()) - 1);
+  }
+
+  const Bounds all = scene.bounds();
+  for (const Viewpoint& v : scene.cameras) {
+    tinygltf::Camera cam;
+    cam.type = "perspective";
+    cam.name = v.name;
+    cam.perspective.yfov = v.yfov;
+    cam.perspective.aspectRatio = v.aspect;
+    // 1 cm to twice the distance that takes in the whole scene (tinygltf always writes zfar).
+    cam.perspective.znear = 0.01;
+    const double reach = all.empty() ? 0 : length(v.position - all.center()) + length(all.diagonal());
+    cam.perspective.zfar = std::max(1.0, 2 * reach);
+    model.cameras.push_back(cam);
+    tinygltf::Node node;
+    node.name = v.name;
+    node.camera = int(model.cameras.size()) - 1;
+    node.translation = {v.position.x, v.position.y, v.position.z};
+    node.rotation = camera_rotation(v);
+    model.nodes.push_back(node);
+    gscene.nodes.push_back(int(model.nodes.size()) - 1);
+  }
+  model.scenes.push_back(gscene);
+  model.defaultScene = 0;
+
+  // Serialised in memory (a .gltf gets its buffer as a data URI), then written with checks:
+  // tinygltf's file writer does not report a file it could not open.
+  const bool binary = ext == ".glb";
+  std::ostringstream bytes;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint=*/!binary, /*writeBinary=*/binary))
+    throw OutputError(path + ": cannot serialise the glTF");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  const std::string data = bytes.str();
+  out.write(data.data(), std::streamsize(data.size()));
+  out.close();
+  if (!out) throw OutputError(path + ": cannot write the file");
+}
+
+}  // namespace walkrad
