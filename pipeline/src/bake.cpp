@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <memory>
 
 #include <tbb/global_control.h>
@@ -20,6 +21,9 @@
 #include "walkrad/pipeline/exposure.h"
 #include "walkrad/pipeline/form_factor_matrix.h"
 #include "walkrad/pipeline/gauss_seidel.h"
+#include "walkrad/pipeline/hierarchical_solver.h"
+#include "walkrad/pipeline/hierarchy_mesher.h"
+#include "walkrad/pipeline/view_importance.h"
 #include "walkrad/pipeline/progress.h"
 #include "walkrad/pipeline/staged_output.h"
 #include "walkrad/pipeline/subdivision.h"
@@ -93,16 +97,141 @@ size_t element_at(const Subdivision& sub, uint32_t polygon, const Vec3& p) {
   return best;
 }
 
+
+// What a solver hands to the rest of the bake: a way to look up radiosity at a surface point (for
+// exposure), a mesher, and its counters for report.json.
+struct MethodResult {
+  std::function<Vec3(uint32_t, const Vec3&)> radiosity_at;
+  std::function<ChunkMesh(double)> mesh;
+  double surface_exposure = 1.0;  // exposure from the surfaces themselves, for bakes without viewpoints
+  json counts, solver, energy;
+};
+
+// 0.9 / the 95th percentile of the luminance (B/π) of non-emitting surfaces.
+double exposure_of(std::vector<double> luminances) {
+  if (luminances.empty()) return 1.0;
+  const size_t p95 = std::min(luminances.size() - 1, size_t(0.95 * double(luminances.size())));
+  std::nth_element(luminances.begin(), luminances.begin() + p95, luminances.end());
+  return luminances[p95] > 0 ? 0.9 / luminances[p95] : 1.0;
+}
+
+json energy_json(const Vec3& emitted, const Vec3& absorbed) {
+  return {{"emitted_w", vec_json(emitted)}, {"absorbed_w", vec_json(absorbed)}};
+}
+
+MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
+                           const Bounds& bounds, Phases& phases) {
+  phases.start("subdivide");
+  const double element_size = s.element_size > 0 ? s.element_size : length(bounds.diagonal()) / 30.0;
+  auto sub = std::make_shared<Subdivision>(subdivide_uniform(scene, element_size));
+  const size_t n = sub->elements.size();
+
+  phases.start("form factors");
+  FormFactorSettings ffs;
+  ffs.rays_per_point = std::max(1, s.rays_per_point);
+  FormFactorCounts counts;
+  FormFactorMatrix f;
+  {
+    Progress progress("form factors", n, s.progress);
+    f = compute_form_factors(*sub, &rays, &tree, ffs, counts, [&](size_t done) { progress.update(done); });
+  }
+
+  phases.start("solve");
+  std::vector<Vec3> rho(n), emission(n);
+  std::vector<double> area(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Material& m = scene.materials[sub->elements[i].shape.material];
+    rho[i] = m.reflectance;
+    emission[i] = m.emission;
+    area[i] = sub->elements[i].area;
+  }
+  SolveSettings solve;
+  solve.tolerance = s.tolerance;
+  solve.max_iterations = s.max_iterations;
+  SolveStats stats;
+  auto b = std::make_shared<std::vector<Vec3>>(solve_gauss_seidel(f, rho, emission, solve, stats));
+  const EnergyBalance energy = energy_balance(f, area, rho, emission, *b);
+  for (const Vec3& v : *b)
+    if (!is_finite(v)) throw std::runtime_error("the solution is not finite (please report this scene)");
+
+  MethodResult r;
+  r.radiosity_at = [sub, b](uint32_t poly, const Vec3& p) { return (*b)[element_at(*sub, poly, p)]; };
+  r.mesh = [sub, b](double exposure) { return mesh_elements(*sub, *b, exposure); };
+  std::vector<double> lum;
+  for (size_t i = 0; i < n; ++i)
+    if (!scene.materials[sub->elements[i].shape.material].emits()) lum.push_back(luminance((*b)[i]) / kPi);
+  r.surface_exposure = exposure_of(std::move(lum));
+  r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
+              {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations}};
+  r.solver = {{"element_size", element_size}, {"converged", stats.converged}, {"last_update", stats.last_update},
+              {"tolerance", s.tolerance}};
+  r.energy = energy_json(energy.emitted, energy.absorbed);
+  r.energy["residual_w"] = vec_json(energy.residual);
+  return r;
+}
+
+MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
+                                const std::vector<Viewpoint>& views, Phases& phases) {
+  auto h = std::make_shared<Hierarchy>(scene, tree);
+  uint64_t view_rays = 0;
+  if (!views.empty()) {
+    phases.start("importance");
+    h->set_view_hits(cast_view_rays(views, rays, 128, 64, view_rays));
+  }
+  phases.start("solve");
+  HierarchicalSettings hs;
+  hs.epsilon = s.epsilon;
+  hs.min_area = s.min_area;
+  hs.rays = std::max(1, s.rays_per_point) * 16;
+  hs.tolerance = std::max(s.tolerance, 1e-6);
+  HierarchicalStats stats;
+  const auto t0 = Clock::now();
+  solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
+    if (!s.progress) return;
+    std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e, %.1f s\n",
+                 stats.iterations.size(), static_cast<unsigned long long>(it.links),
+                 static_cast<unsigned long long>(it.new_links), static_cast<unsigned long long>(it.elements), it.change,
+                 std::chrono::duration<double>(Clock::now() - t0).count());
+  });
+  for (const HNode& n : h->nodes())
+    if (!is_finite(n.B)) throw std::runtime_error("the solution is not finite (please report this scene)");
+
+  MethodResult r;
+  r.radiosity_at = [h](uint32_t poly, const Vec3& p) {
+    // The element root of an input polygon: a leaf cluster's children, found through the tree.
+    return (*h)[leaf_at(*h, h->polygon_root(poly), p)].B;
+  };
+  r.mesh = [h](double exposure) { return mesh_hierarchy(*h, exposure); };
+  std::vector<double> lum;
+  for (const HNode& n : h->nodes())
+    if (!n.cluster && !n.child_count && !n.emission.x && !n.emission.y && !n.emission.z) lum.push_back(luminance(n.B) / kPi);
+  r.surface_exposure = exposure_of(std::move(lum));
+  json rounds = json::array();
+  for (const IterationStats& it : stats.iterations)
+    rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"elements", it.elements}, {"rays", it.rays},
+                      {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)}});
+  r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
+              {"unoccluded_links", stats.unoccluded_links}, {"monte_carlo_links", stats.monte_carlo_links},
+              {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()}};
+  r.solver = {{"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
+              {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
+              {"left_error_max_w", stats.left_error_max}, {"left_error_sum_w", stats.left_error_sum}};
+  const IterationStats& last = stats.iterations.back();
+  r.energy = energy_json(last.emitted, last.absorbed);
+  return r;
+}
 }  // namespace
 
 json BakeSettings::to_json() const {
-  return {{"method", method}, {"element_size", element_size}, {"rays_per_point", rays_per_point},
-          {"exposure", exposure}, {"tolerance", tolerance}, {"max_iterations", max_iterations}};
+  return {{"method", method},     {"epsilon", epsilon},     {"min_area", min_area},
+          {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
+          {"tolerance", tolerance}, {"max_iterations", max_iterations}};
 }
 
 BakeSummary bake(const BakeSettings& s) {
   const auto t_start = Clock::now();
-  if (s.method != "classic") throw InputError("--method", "", "unknown method '" + s.method + "' (available: classic)", kExitBadArguments);
+  if (s.method != "classic" && s.method != "hierarchical")
+    throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
   std::unique_ptr<tbb::global_control> limit;
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
@@ -118,66 +247,27 @@ BakeSummary bake(const BakeSettings& s) {
   // Fail on an unwritable destination before the long work, not after it.
   StagedOutput out(s.output);
 
-  phases.start("subdivide");
+  phases.start("prepare");
   const Bounds bounds = input.bounds();
   ContactSplitStats split_stats;
   const Scene scene = split_contacts(input, split_stats);
-  const double element_size = s.element_size > 0 ? s.element_size : length(bounds.diagonal()) / 30.0;
-  const Subdivision sub = subdivide_uniform(scene, element_size);
-  const size_t n = sub.elements.size();
-
-  phases.start("form factors");
   const RayScene rays(scene);
   const ClusterTree tree = build_cluster_tree(scene);
-  FormFactorSettings ffs;
-  ffs.rays_per_point = std::max(1, s.rays_per_point);
-  FormFactorCounts counts;
-  FormFactorMatrix f;
-  {
-    Progress progress("form factors", n, s.progress);
-    f = compute_form_factors(sub, &rays, &tree, ffs, counts, [&](size_t done) { progress.update(done); });
-  }
-
-  phases.start("solve");
-  std::vector<Vec3> rho(n), emission(n);
-  std::vector<double> area(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Material& m = scene.materials[sub.elements[i].shape.material];
-    rho[i] = m.reflectance;
-    emission[i] = m.emission;
-    area[i] = sub.elements[i].area;
-  }
-  SolveSettings solve;
-  solve.tolerance = s.tolerance;
-  solve.max_iterations = s.max_iterations;
-  SolveStats stats;
-  const std::vector<Vec3> b = solve_gauss_seidel(f, rho, emission, solve, stats);
-  const EnergyBalance energy = energy_balance(f, area, rho, emission, b);
-  for (const Vec3& v : b)
-    if (!is_finite(v)) throw std::runtime_error("the solution is not finite (please report this scene)");
+  const MethodResult result = s.method == "classic" ? solve_classic(s, scene, rays, tree, bounds, phases)
+                                                    : solve_hierarchical(s, scene, rays, tree, views, phases);
 
   phases.start("exposure");
   uint64_t exposure_rays = 0;
   double exposure = s.exposure;
   if (exposure <= 0) {
     exposure = auto_exposure(
-        views, rays, 64, [&](uint32_t poly, const Vec3& p) { return b[element_at(sub, poly, p)]; },
+        views, rays, 64, result.radiosity_at,
         [&](uint32_t poly) { return scene.materials[scene.polygons[poly].material].emits(); }, exposure_rays);
-    if (views.empty()) {
-      // No viewpoint: expose for the 95th percentile of the surfaces themselves.
-      std::vector<double> lum;
-      for (size_t i = 0; i < n; ++i)
-        if (!scene.materials[sub.elements[i].shape.material].emits()) lum.push_back(luminance(b[i]) / kPi);
-      if (!lum.empty()) {
-        const size_t p95 = std::min(lum.size() - 1, size_t(0.95 * double(lum.size())));
-        std::nth_element(lum.begin(), lum.begin() + p95, lum.end());
-        if (lum[p95] > 0) exposure = 0.9 / lum[p95];
-      }
-    }
+    if (views.empty()) exposure = result.surface_exposure;
   }
 
   phases.start("mesh");
-  const ChunkMesh mesh = mesh_elements(sub, b, exposure);
+  const ChunkMesh mesh = result.mesh(exposure);
 
   phases.start("write");
   Manifest manifest;
@@ -188,7 +278,6 @@ BakeSummary bake(const BakeSettings& s) {
   manifest.exposure = exposure;
   manifest.viewpoints = views;
   manifest.settings = s.to_json();
-  manifest.settings["element_size"] = element_size;
   ChunkInfo chunk;
   chunk.file = "chunk-0000.glb";
   chunk.bounds = manifest.bounds;
@@ -199,31 +288,25 @@ BakeSummary bake(const BakeSettings& s) {
   phases.finish();
 
   const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  json counts = result.counts;
+  counts["input_polygons"] = input.polygons.size();
+  counts["polygons"] = scene.polygons.size();
+  counts["contact_cuts"] = split_stats.cuts;
+  counts["exposure_rays"] = exposure_rays;
+  counts["triangles"] = mesh.triangle_count();
+  counts["viewpoints"] = views.size();
+  counts["dropped_degenerate"] = input.dropped_degenerate;
   json report = {
-      {"format", "walkrad-report"},
-      {"version", 1},
-      {"method", s.method},
-      {"threads", threads},
-      {"phases", phases.list()},
-      {"total_seconds", seconds},
-      {"counts",
-       {{"input_polygons", input.polygons.size()}, {"polygons", scene.polygons.size()},
-        {"contact_cuts", split_stats.cuts}, {"elements", n}, {"form_factor_pairs", counts.pairs},
-        {"unoccluded_pairs", counts.unoccluded}, {"form_factor_entries", counts.nonzero},
-        {"visibility_rays", counts.rays}, {"exposure_rays", exposure_rays},
-        {"iterations", stats.iterations}, {"triangles", mesh.triangle_count()}, {"viewpoints", views.size()},
-        {"dropped_degenerate", input.dropped_degenerate}}},
-      {"solver", {{"converged", stats.converged}, {"last_update", stats.last_update}, {"tolerance", s.tolerance}}},
-      {"energy", {{"emitted_w", vec_json(energy.emitted)}, {"absorbed_w", vec_json(energy.absorbed)},
-                  {"residual_w", vec_json(energy.residual)}}},
-      {"warnings", input.warnings},
+      {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
+      {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
+      {"energy", result.energy},    {"warnings", input.warnings},
   };
   write_json(out.path("report.json"), report);
   out.commit();
 
   BakeSummary summary;
   summary.output = s.output;
-  summary.elements = n;
+  summary.elements = result.counts.value("elements", uint64_t(0));
   summary.triangles = mesh.triangle_count();
   summary.viewpoints = views.size();
   summary.exposure = exposure;

@@ -1,6 +1,7 @@
 // bake: the offline pipeline end to end, as one function over plain settings (main() stays thin).
-// read scene + walkthrough → split polygons at contacts → subdivide → form factors (contour formula × Embree visibility) →
-// Gauss-Seidel → exposure → vertex mesh → bake folder (manifest.json, chunk-0000.glb, report.json),
+// read scene + walkthrough → split polygons at contacts → solve (hierarchical: importance from the
+// viewpoints, refine/gather/push-pull over links; classic: uniform elements, full form factor matrix,
+// Gauss-Seidel) → exposure → vertex mesh → bake folder (manifest.json, chunk-0000.glb, report.json),
 // staged and swapped into place only when complete.
 #pragma once
 
@@ -14,9 +15,11 @@ struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
   std::string output;       // the bake folder
-  std::string method = "classic";
-  double element_size = 0;  // metres; 0: the scene's diagonal / 30
-  int rays_per_point = 1;   // visibility rays per receiver quadrature point
+  std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
+  double epsilon = 1e-5;    // hierarchical: refine while B·I·ρ·F (or B·A·ρ·F) > ε × emitted power
+  double min_area = 0;      // hierarchical: smallest element, m² (0: (scene diagonal / 256)²)
+  double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30
+  int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
   double exposure = 0;      // 0: automatic from the viewpoints
   int threads = 0;          // 0: all cores
   double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity

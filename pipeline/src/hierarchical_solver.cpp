@@ -1,0 +1,429 @@
+#include "walkrad/pipeline/hierarchical_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "walkrad/pipeline/formfactor.h"
+#include "walkrad/pipeline/sampling.h"
+#include "walkrad/pipeline/shaft.h"
+
+namespace walkrad {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
+// Used by the refinement oracle's estimate; link form factors use each surface's own cosine.
+constexpr double kClusterCosine = 0.25;
+
+struct Pending {
+  uint32_t receiver, source;
+  bool need_rays;
+  int samples = 0;  // rays (or Monte Carlo samples) for this link
+  double F = 0, spread = 0;
+  uint64_t rays = 0;
+};
+
+bool overlap(const Bounds& a, const Bounds& b) {
+  for (int k = 0; k < 3; ++k)
+    if (a.hi[k] <= b.lo[k] || b.hi[k] <= a.lo[k]) return false;
+  return true;
+}
+
+// True when every corner of box lies on or behind the element's plane: it can see nothing there.
+bool behind(const HNode& element, const Bounds& box) {
+  const double tol = 1e-9 * (element.radius + 1e-30);
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 p(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z);
+    if (dot(p - element.shape.v[0], element.normal) > tol) return false;
+  }
+  return true;
+}
+
+class Solver {
+ public:
+  Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
+      : h_(h), rays_(rays), s_(s), stats_(stats) {
+    const HNode& root = h_[h_.root()];
+    Vec3 emitted;
+    for (const HNode& n : h_.nodes())
+      if (!n.cluster) emitted += n.emission * n.area;
+    const double power = luminance(emitted);
+    eps_ = s_.epsilon * power;
+    stats_.epsilon_absolute = eps_;
+    min_area_ = s_.min_area > 0 ? s_.min_area : std::pow(2.0 * root.radius / 256.0, 2);
+    // Importance: scaled so that Σ R = Σ A, then B·I·ρ·F and the BF oracle B·A·ρ·F share ε.
+    importance_ = s_.use_importance && root.R > 0;
+    stats_.oracle = importance_ ? "importance" : "BF";
+    if (importance_) {
+      const double scale = root.area / root.R;
+      for (HNode& n : h_.nodes()) {
+        n.R *= scale;
+        n.I = n.R;
+      }
+    }
+  }
+
+  void run(const std::function<void(const IterationStats&)>& progress) {
+    bool first = true;
+    for (int it = 0; it < s_.max_iterations; ++it) {
+      IterationStats is;
+      const size_t before = pending_.size();
+      if (first) {
+        refine(h_.root(), h_.root(), nullptr);
+        first = false;
+      } else {
+        refine_existing();
+      }
+      is.new_links = pending_.size() - before;
+      evaluate_pending(is);
+      const bool last_round = is.new_links == 0;
+      const int sweeps = last_round ? 1000 : s_.sweeps;
+      for (int sweep = 0; sweep < sweeps; ++sweep) {
+        is.change = solve_sweep(is);
+        if (is.change <= s_.tolerance) break;
+      }
+      is.links = stats_.links;
+      is.elements = h_.element_count();
+      stats_.iterations.push_back(is);
+      if (progress) progress(is);
+      if (last_round && is.change <= s_.tolerance) {
+        stats_.converged = true;
+        break;
+      }
+    }
+    measure_left_error();
+  }
+
+ private:
+  double weight(const HNode& n) const { return importance_ ? n.I : n.area; }
+
+  bool splittable(uint32_t i) const {
+    const HNode& n = h_[i];
+    if (n.cluster) return n.child_count > 0;
+    return n.depth < s_.max_depth && n.area * 0.25 >= min_area_;
+  }
+
+  // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
+  // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
+  double estimate(const HNode& ri, const HNode& sj) const {
+    const Vec3 d = sj.center - ri.center;
+    const double r2 = dot(d, d), r = std::sqrt(r2);
+    const bool near = r < 2.0 * (ri.radius + sj.radius);
+    const Vec3 u = r > 0 ? d / r : Vec3{};
+    const double ci = ri.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, dot(ri.normal, u)));
+    const double cj = sj.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, -dot(sj.normal, u)));
+    return ci * cj * sj.area / (kPi * r2 + sj.area);
+  }
+
+  double oracle(const HNode& ri, const HNode& sj) const {
+    return luminance(sj.B) * weight(ri) * luminance(ri.rho) * estimate(ri, sj);
+  }
+
+  // Refines the interaction of receiver i with source j: links it, drops it, or splits an end and
+  // recurses. parent: the candidate occluders of the enclosing link's shaft (null: from the tree).
+  void refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent) {
+    if (i == j) {
+      if (!h_[i].cluster) return;  // a planar element does not see itself
+      const uint32_t count = h_[i].child_count;
+      for (uint32_t a = 0; a < count; ++a)
+        for (uint32_t b = 0; b < count; ++b) refine(h_.child(h_[i], a), h_.child(h_[i], b), parent);
+      return;
+    }
+    {
+      const HNode& ri = h_[i];
+      const HNode& sj = h_[j];
+      if (!ri.cluster && !sj.cluster && ri.polygon == sj.polygon) return;  // coplanar
+      if (!ri.cluster && behind(ri, sj.bounds)) return;
+      if (!sj.cluster && behind(sj, ri.bounds)) return;
+    }
+    const bool must_split = (h_[i].cluster || h_[j].cluster) && overlap(h_[i].bounds, h_[j].bounds);
+    const bool split = must_split || oracle(h_[i], h_[j]) > eps_;
+
+    // Candidates between the two: the parent's list filtered by this pair's shaft.
+    const Shaft shaft(h_[i].bounds, h_[j].bounds);
+    const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
+    std::vector<uint32_t> candidates = parent ? filter_candidates(h_.tree(), shaft, *parent, ex_i, ex_j)
+                                              : shaft_candidates(h_.tree(), shaft, ex_i, ex_j);
+
+    if (split) {
+      const bool si = splittable(i), sj = splittable(j);
+      if (si || sj) {
+        bool split_receiver = si && (!sj || h_[i].radius >= h_[j].radius);
+        if (must_split && si && sj && h_[i].cluster != h_[j].cluster) split_receiver = h_[i].cluster;
+        const uint32_t end = split_receiver ? i : j;
+        h_.subdivide(end);
+        ++stats_.refinements;
+        const uint32_t count = h_[end].child_count;
+        for (uint32_t k = 0; k < count; ++k) {
+          const uint32_t c = h_.child(h_[end], k);
+          if (split_receiver) refine(c, j, &candidates);
+          else refine(i, c, &candidates);
+        }
+        return;
+      }
+    }
+    // More rays where more can block, and where the transfer matters more than ε (a link kept only
+    // because neither end may split further).
+    int samples = s_.rays;
+    if (candidates.size() > 4) samples *= 2;
+    if (candidates.size() > 64) samples *= 2;
+    if (split) samples *= 2;
+    pending_.push_back({i, j, !candidates.empty(), samples});
+  }
+
+  // Later rounds: links whose oracle now exceeds ε (B and I have changed) are split.
+  void refine_existing() {
+    const size_t n = h_.nodes().size();
+    for (size_t i = 0; i < n; ++i) {
+      if (h_[i].links.empty()) continue;
+      std::vector<Link> links = std::move(h_[i].links);
+      h_[i].links.clear();
+      // A receiver whose links each pass the oracle may still be wrong as a whole: each link's
+      // irradiance is pushed uniformly onto its children, and their true share varies by the
+      // links' spreads. When the sum of those variations matters, split the receiver.
+      if (!h_[i].cluster && splittable(uint32_t(i))) {
+        double variation = 0;
+        for (const Link& l : links) variation += luminance(h_[l.source].B) * l.spread;
+        if (variation * weight(h_[i]) * luminance(h_[i].rho) > eps_) {
+          h_.subdivide(uint32_t(i));
+          ++stats_.refinements;
+          for (const Link& l : links) {
+            --stats_.links;
+            for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(h_.child(h_[i], k), l.source, nullptr);
+          }
+          continue;
+        }
+      }
+      for (const Link& l : links) {
+        const bool can = splittable(uint32_t(i)) || splittable(l.source);
+        if (can && oracle(h_[i], h_[l.source]) > eps_) {
+          --stats_.links;
+          refine(uint32_t(i), l.source, nullptr);
+        } else {
+          h_[i].links.push_back(l);
+        }
+      }
+    }
+  }
+
+  // Form factors of the new links, in parallel: each link draws from its own random stream.
+  void evaluate_pending(IterationStats& is) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      std::vector<RayScene::Segment> segments;
+      std::vector<uint8_t> blocked;
+      std::vector<double> weights;
+      for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, blocked, weights);
+    });
+    for (const Pending& p : pending_) {
+      stats_.rays += p.rays;
+      is.rays += p.rays;
+      if (!p.need_rays) ++stats_.unoccluded_links;
+      if (h_[p.receiver].cluster || h_[p.source].cluster) ++stats_.monte_carlo_links;
+      if (p.F > 0) {
+        h_[p.receiver].links.push_back({p.source, p.F, p.spread});
+        ++stats_.links;
+      }
+    }
+    pending_.clear();
+  }
+
+  void evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<uint8_t>& blocked,
+                std::vector<double>& weights) const {
+    const HNode& ri = h_[p.receiver];
+    const HNode& sj = h_[p.source];
+    Rng rng(p.receiver, p.source);
+    const double offset = rays_.offset();
+    segments.clear();
+    weights.clear();
+    if (!ri.cluster && !sj.cluster) {
+      // Element to element: the contour formula over receiver quadrature points, each point's
+      // visibility from rays to stratified points of the source.
+      const int order = quadrature_order(length(ri.center - sj.center), std::sqrt(ri.area), std::sqrt(sj.area));
+      const std::vector<QuadraturePoint> pts = quadrature_points(ri.shape, order);
+      const int per_point = p.need_rays ? std::max(1, p.samples / int(pts.size())) : 0;
+      for (const QuadraturePoint& q : pts) {
+        double f = 0;
+        if (dot(q.position - sj.shape.v[0], sj.normal) > 0) f = point_to_polygon(q.position, ri.normal, sj.shape);
+        weights.push_back(q.weight * f);
+        const Vec3 from = q.position + ri.normal * offset;
+        for (int k = 0; k < per_point; ++k)
+          segments.push_back({from, sample_polygon(sj.shape, rng.uniform(), rng.uniform()) + sj.normal * offset});
+      }
+      blocked.assign(segments.size(), 0);
+      if (!segments.empty()) rays_.occluded(segments.data(), segments.size(), blocked.data());
+      double sum = 0;
+      for (size_t q = 0; q < pts.size(); ++q) {
+        double visible = 1;
+        if (per_point) {
+          int open = 0;
+          for (int k = 0; k < per_point; ++k) open += blocked[q * per_point + k] ? 0 : 1;
+          visible = double(open) / per_point;
+        }
+        sum += weights[q] * visible;
+      }
+      p.F = sum / ri.area;
+      p.rays = segments.size();
+      // Variation of the point form factor over the receiver, from its quadrature points.
+      double lo = INFINITY, hi = 0;
+      for (size_t q = 0; q < pts.size(); ++q) {
+        const double f = pts[q].weight > 0 ? weights[q] / pts[q].weight : 0.0;
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+      p.spread = pts.empty() ? 0.0 : hi - lo;
+      return;
+    }
+    // A cluster at one end or both (Smits, Arvo & Greenberg 1994): the unoccluded form factor from
+    // the receiver's surfaces to the source's, exactly (element to element over every pair of
+    // polygons) when they hold few, else by Monte Carlo over area-sampled point pairs with each
+    // surface's own cosine; visibility as the kernel-weighted fraction of rays that arrive.
+    const int n = std::max(1, p.samples);
+    double mc = 0, weighted = 0, open = 0;
+    for (int k = 0; k < n; ++k) {
+      Vec3 pi, ni, pj, nj;
+      h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni);
+      h_.sample(sj, rng.uniform(), rng.uniform(), rng.uniform(), pj, nj);
+      const Vec3 d = pj - pi;
+      const double r2 = dot(d, d);
+      if (r2 <= 0) continue;
+      const Vec3 u = d / std::sqrt(r2);
+      const double ci = dot(ni, u), cj = -dot(nj, u);
+      if (ci <= 0 || cj <= 0) continue;
+      const double kernel = ci * cj * sj.area / (kPi * r2 + sj.area / n);
+      mc += kernel;
+      if (p.need_rays) {
+        segments.push_back({pi + ni * offset, pj + nj * offset});
+        weights.push_back(kernel);
+      }
+    }
+    blocked.assign(segments.size(), 0);
+    if (!segments.empty()) rays_.occluded(segments.data(), segments.size(), blocked.data());
+    for (size_t k = 0; k < segments.size(); ++k) {
+      weighted += weights[k];
+      if (!blocked[k]) open += weights[k];
+    }
+    const double visibility = p.need_rays ? (weighted > 0 ? open / weighted : 0.0) : 1.0;
+    const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / n;
+    p.F = unoccluded * visibility;
+    p.rays = segments.size();
+  }
+
+  static constexpr uint64_t kExactClusterPairs = 64;
+
+  uint64_t polygon_pairs(const HNode& a, const HNode& b) const {
+    return uint64_t(a.cluster ? h_.polygon_count(a) : 1) * uint64_t(b.cluster ? h_.polygon_count(b) : 1);
+  }
+
+  // (1/A_i) Σ_{k ∈ i} Σ_{m ∈ j} A_k F_km over the polygons (or the element) of each end.
+  double exact_unoccluded(const HNode& ri, const HNode& sj) const {
+    auto shapes = [&](const HNode& n) {
+      std::vector<Polygon> out;
+      if (!n.cluster) {
+        out.push_back(n.shape);
+      } else {
+        for (uint32_t k = h_.polygon_begin(n); k < h_.polygon_begin(n) + h_.polygon_count(n); ++k)
+          out.push_back(h_.scene().polygons[h_.tree().polygons[k]]);
+      }
+      return out;
+    };
+    const std::vector<Polygon> rs = shapes(ri), ss = shapes(sj);
+    double sum = 0;
+    for (const Polygon& a : rs) {
+      const double area = polygon_area(a);
+      for (const Polygon& b : ss)
+        if (&a != &b && !(a.v == b.v && a.count == b.count)) sum += area * element_to_element(a, b);
+    }
+    return ri.area > 0 ? sum / ri.area : 0.0;
+  }
+
+  // One Jacobi sweep: gather along all links, push-pull radiosity, shoot and push-pull importance.
+  // Returns the largest relative change of a leaf's radiosity.
+  double solve_sweep(IterationStats& is) {
+    std::vector<HNode>& nodes = h_.nodes();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        Vec3 H;
+        for (const Link& l : nodes[i].links) H += nodes[l.source].B * l.F;
+        nodes[i].H = H;
+      }
+    });
+    change_ = 0;
+    is.emitted = is.absorbed = Vec3{};
+    push_pull(h_.root(), Vec3{}, is);
+    if (importance_) {
+      for (HNode& n : nodes) n.Ig = 0;
+      for (const HNode& n : nodes)  // sequential: sums in a fixed order
+        for (const Link& l : n.links) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
+      push_pull_importance(h_.root(), 0.0);
+    }
+    return change_;
+  }
+
+  Vec3 push_pull(uint32_t i, const Vec3& down, IterationStats& is) {
+    HNode& n = h_[i];
+    const Vec3 H = n.H + down;
+    if (n.child_count == 0) {
+      const Vec3 b = n.emission + mul(n.rho, H);
+      const double scale = max_component(b);
+      if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
+      n.B = b;
+      is.emitted += n.emission * n.area;
+      is.absorbed += mul(Vec3(1, 1, 1) - n.rho, H) * n.area;
+      return b;
+    }
+    Vec3 sum;
+    const uint32_t count = n.child_count;
+    const double area = n.area;
+    for (uint32_t k = 0; k < count; ++k) {
+      const uint32_t c = h_.child(h_[i], k);
+      sum += push_pull(c, H, is) * h_[c].area;
+    }
+    h_[i].B = area > 0 ? sum / area : Vec3{};
+    return h_[i].B;
+  }
+
+  double push_pull_importance(uint32_t i, double down) {
+    const double total = h_[i].Ig + down;
+    if (h_[i].child_count == 0) return h_[i].I = h_[i].R + total;
+    double sum = 0;
+    const double area = h_[i].area;
+    for (uint32_t k = 0; k < h_[i].child_count; ++k) {
+      const uint32_t c = h_.child(h_[i], k);
+      sum += push_pull_importance(c, area > 0 ? total * h_[c].area / area : 0.0);
+    }
+    return h_[i].I = sum;
+  }
+
+  // What the final links still carry above nothing: B·W·ρ·F, the error the user sees as coarse.
+  void measure_left_error() {
+    for (const HNode& n : h_.nodes())
+      for (const Link& l : n.links) {
+        const double e = luminance(h_[l.source].B) * weight(n) * luminance(n.rho) * l.F;
+        stats_.left_error_max = std::max(stats_.left_error_max, e);
+        stats_.left_error_sum += e;
+      }
+  }
+
+  Hierarchy& h_;
+  const RayScene& rays_;
+  const HierarchicalSettings& s_;
+  HierarchicalStats& stats_;
+  double eps_ = 0, min_area_ = 0, change_ = 0;
+  bool importance_ = false;
+  std::vector<Pending> pending_;
+};
+
+}  // namespace
+
+void solve_hierarchical(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& settings, HierarchicalStats& stats,
+                        const std::function<void(const IterationStats&)>& progress) {
+  stats = {};
+  if (h.nodes().empty()) return;
+  Solver solver(h, rays, settings, stats);
+  solver.run(progress);
+}
+
+}  // namespace walkrad
