@@ -40,7 +40,12 @@ void split_loop(const Loop& l, const Vec3& n, double d, Loop& below, Loop& above
 struct Cut {
   Vec3 n;
   double d;
+  double length;  // of the edge that made it
 };
+
+// At most this many cuts per polygon, the longest edges first: a wall's foot matters, the thirty
+// books on a shelf board would cut it into slivers for little gain.
+constexpr size_t kMaxCutsPerPolygon = 16;
 
 // Edges of polygon p that lie on q's plane and cross q's interior.
 void contact_cuts(const Polygon& q, const Vec3& qn, const Polygon& p, double tol, std::vector<Cut>& cuts) {
@@ -54,6 +59,7 @@ void contact_cuts(const Polygon& q, const Vec3& qn, const Polygon& p, double tol
     Cut c;
     c.n = normalize(cross(dir, qn));
     c.d = dot(c.n, a);
+    c.length = length(dir);
     // Does the segment [a, b] touch q's interior? Clip it against q's edges.
     double t0 = 0, t1 = 1;
     for (int e = 0; e < q.count && t0 < t1; ++e) {
@@ -117,6 +123,18 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
       out.polygons.push_back(q);
       continue;
     }
+    // One cut per line (collinear edges: a row of books, two boxes side by side), longest first.
+    for (Cut& c : cuts)
+      if (c.n.x < 0 || (c.n.x == 0 && (c.n.y < 0 || (c.n.y == 0 && c.n.z < 0)))) { c.n = -c.n; c.d = -c.d; }
+    std::stable_sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) { return a.length > b.length; });
+    std::vector<Cut> unique;
+    for (const Cut& c : cuts) {
+      bool same = false;
+      for (const Cut& u : unique) same = same || (dot(c.n, u.n) > 1 - 1e-12 && std::fabs(c.d - u.d) <= tol);
+      if (!same) unique.push_back(c);
+      if (unique.size() == kMaxCutsPerPolygon) break;
+    }
+    cuts.swap(unique);
     std::vector<Loop> pieces = {Loop(q.v.begin(), q.v.begin() + q.count)}, next;
     Loop below, above;
     const double min_area = tol * std::sqrt(polygon_area(q));  // no sliver thinner than the tolerance

@@ -292,7 +292,7 @@ class Solver {
       const Vec3 u = d / std::sqrt(r2);
       const double ci = dot(ni, u), cj = -dot(nj, u);
       if (ci <= 0 || cj <= 0) continue;
-      const double kernel = ci * cj * sj.area / (kPi * r2 + sj.area / n);
+      const double kernel = ci * cj * sj.area / (kPi * r2);  // finite: linked clusters do not overlap
       mc += kernel;
       if (p.need_rays) {
         segments.push_back({pi + ni * offset, pj + nj * offset});
