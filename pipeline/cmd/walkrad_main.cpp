@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bake_cmd->add_option("--epsilon", bs.epsilon, "hierarchical: refinement threshold, relative to the emitted power")
       ->check(CLI::PositiveNumber)->capture_default_str();
+  bake_cmd->add_flag("--view-independent", bs.view_independent,
+                     "hierarchical: refine for every surface alike (BF oracle), not for what the viewpoints see");
   bake_cmd->add_option("--min-area", bs.min_area, "hierarchical: smallest element in m² (default: (diagonal/256)²)")
       ->check(CLI::NonNegativeNumber);
   bake_cmd->add_option("--element-size", bs.element_size, "classic: element edge length in metres (default: scene diagonal / 30)")

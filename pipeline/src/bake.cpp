@@ -174,7 +174,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
                                 const std::vector<Viewpoint>& views, Phases& phases) {
   auto h = std::make_shared<Hierarchy>(scene, tree);
   uint64_t view_rays = 0;
-  if (!views.empty()) {
+  if (!views.empty() && !s.view_independent) {
     phases.start("importance");
     h->set_view_hits(cast_view_rays(views, rays, 128, 64, view_rays));
   }
@@ -223,7 +223,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
 }  // namespace
 
 json BakeSettings::to_json() const {
-  return {{"method", method},     {"epsilon", epsilon},     {"min_area", min_area},
+  return {{"method", method},     {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}};
 }

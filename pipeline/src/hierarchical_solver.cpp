@@ -26,10 +26,14 @@ struct Pending {
   uint64_t rays = 0;
 };
 
-bool overlap(const Bounds& a, const Bounds& b) {
-  for (int k = 0; k < 3; ++k)
-    if (a.hi[k] <= b.lo[k] || b.hi[k] <= a.lo[k]) return false;
-  return true;
+// Distance between two boxes (0 when they overlap or touch).
+double box_distance(const Bounds& a, const Bounds& b) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double gap = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
+    d2 += gap * gap;
+  }
+  return std::sqrt(d2);
 }
 
 // True when every corner of box lies on or behind the element's plane: it can see nothing there.
@@ -66,35 +70,45 @@ class Solver {
     }
   }
 
+  // Rounds of refine → evaluate → solve. A round that adds no link solves to convergence; the
+  // search stops only when a refinement pass over the converged solution adds none either (links
+  // kept while B was still growing are checked again against the final B).
   void run(const std::function<void(const IterationStats&)>& progress) {
-    bool first = true;
+    bool converged_before = false;
     for (int it = 0; it < s_.max_iterations; ++it) {
       IterationStats is;
       const size_t before = pending_.size();
-      if (first) {
-        refine(h_.root(), h_.root(), nullptr);
-        first = false;
-      } else {
-        refine_existing();
-      }
+      if (it == 0) refine(h_.root(), h_.root(), nullptr);
+      else refine_existing();
       is.new_links = pending_.size() - before;
       evaluate_pending(is);
-      const bool last_round = is.new_links == 0;
-      const int sweeps = last_round ? 1000 : s_.sweeps;
+      const bool settled = is.new_links == 0;
+      if (settled && converged_before) {
+        is.change = 0;
+        record(is, progress);
+        stats_.converged = true;
+        break;
+      }
+      const int sweeps = settled ? 1000 : s_.sweeps;
       for (int sweep = 0; sweep < sweeps; ++sweep) {
         is.change = solve_sweep(is);
         if (is.change <= s_.tolerance) break;
       }
-      is.links = stats_.links;
-      is.elements = h_.element_count();
-      stats_.iterations.push_back(is);
-      if (progress) progress(is);
-      if (last_round && is.change <= s_.tolerance) {
-        stats_.converged = true;
-        break;
-      }
+      converged_before = is.change <= s_.tolerance;
+      record(is, progress);
     }
     measure_left_error();
+  }
+
+  void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress) {
+    is.links = stats_.links;
+    is.elements = h_.element_count();
+    if (is.emitted == Vec3{} && !stats_.iterations.empty()) {  // no solve this round: keep the last
+      is.emitted = stats_.iterations.back().emitted;
+      is.absorbed = stats_.iterations.back().absorbed;
+    }
+    stats_.iterations.push_back(is);
+    if (progress) progress(is);
   }
 
  private:
@@ -139,7 +153,12 @@ class Solver {
       if (!ri.cluster && behind(ri, sj.bounds)) return;
       if (!sj.cluster && behind(sj, ri.bounds)) return;
     }
-    const bool must_split = (h_[i].cluster || h_[j].cluster) && overlap(h_[i].bounds, h_[j].bounds);
+    // A cluster is linked only from far enough away: its bounds at least half its radius from the
+    // other end's. Closer, a surface of the cluster may lie centimetres from the other end (a
+    // bookcase against a wall), where the point-sampled kernel 1/r² has huge variance and the
+    // cluster's average radiosity says nothing of that surface.
+    const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
+    const bool must_split = reach > 0 && box_distance(h_[i].bounds, h_[j].bounds) < 0.5 * reach;
     const bool split = must_split || oracle(h_[i], h_[j]) > eps_;
 
     // Candidates between the two: the parent's list filtered by this pair's shaft.
@@ -153,6 +172,9 @@ class Solver {
       if (si || sj) {
         bool split_receiver = si && (!sj || h_[i].radius >= h_[j].radius);
         if (must_split && si && sj && h_[i].cluster != h_[j].cluster) split_receiver = h_[i].cluster;
+        if (must_split && !(split_receiver ? h_[i].cluster : h_[j].cluster) && (split_receiver ? sj : si) &&
+            (split_receiver ? h_[j].cluster : h_[i].cluster))
+          split_receiver = !split_receiver;  // split the cluster end first
         const uint32_t end = split_receiver ? i : j;
         h_.subdivide(end);
         ++stats_.refinements;
@@ -244,13 +266,18 @@ class Solver {
       const int order = quadrature_order(length(ri.center - sj.center), std::sqrt(ri.area), std::sqrt(sj.area));
       const std::vector<QuadraturePoint> pts = quadrature_points(ri.shape, order);
       const int per_point = p.need_rays ? std::max(1, p.samples / int(pts.size())) : 0;
+      std::vector<double>& kernel = kernel_scratch_;
+      kernel.clear();
       for (const QuadraturePoint& q : pts) {
         double f = 0;
         if (dot(q.position - sj.shape.v[0], sj.normal) > 0) f = point_to_polygon(q.position, ri.normal, sj.shape);
         weights.push_back(q.weight * f);
         const Vec3 from = q.position + ri.normal * offset;
-        for (int k = 0; k < per_point; ++k)
-          segments.push_back({from, sample_polygon(sj.shape, rng.uniform(), rng.uniform()) + sj.normal * offset});
+        for (int k = 0; k < per_point; ++k) {
+          const Vec3 y = sample_polygon(sj.shape, rng.uniform(), rng.uniform());
+          segments.push_back({from, y + sj.normal * offset});
+          kernel.push_back(point_kernel(q.position, ri.normal, y, sj.normal));
+        }
       }
       blocked.assign(segments.size(), 0);
       if (!segments.empty()) rays_.occluded(segments.data(), segments.size(), blocked.data());
@@ -258,9 +285,16 @@ class Solver {
       for (size_t q = 0; q < pts.size(); ++q) {
         double visible = 1;
         if (per_point) {
-          int open = 0;
-          for (int k = 0; k < per_point; ++k) open += blocked[q * per_point + k] ? 0 : 1;
-          visible = double(open) / per_point;
+          // Visibility weighted by the kernel: the part of a large source close to the receiver
+          // counts as much as it contributes (a shelf top sees the wall just above it, not the
+          // wall hidden behind the bookcase).
+          double all = 0, open = 0;
+          int arrived = 0;
+          for (int k = 0; k < per_point; ++k) {
+            all += kernel[q * per_point + k];
+            if (!blocked[q * per_point + k]) open += kernel[q * per_point + k], ++arrived;
+          }
+          visible = all > 0 ? open / all : double(arrived) / per_point;
         }
         sum += weights[q] * visible;
       }
@@ -280,9 +314,13 @@ class Solver {
     // the receiver's surfaces to the source's, exactly (element to element over every pair of
     // polygons) when they hold few, else by Monte Carlo over area-sampled point pairs with each
     // surface's own cosine; visibility as the kernel-weighted fraction of rays that arrive.
+    // Between clusters of mostly unrelated orientations few pairs face each other: keep drawing (up
+    // to 8n) until a quarter of n did, or the visibility fraction would rest on one or no sample
+    // (and be 0 for a link whose unoccluded form factor is known to be positive).
     const int n = std::max(1, p.samples);
     double mc = 0, weighted = 0, open = 0;
-    for (int k = 0; k < n; ++k) {
+    int drawn = 0, facing = 0;
+    for (; drawn < n || (facing < (n + 3) / 4 && drawn < 8 * n); ++drawn) {
       Vec3 pi, ni, pj, nj;
       h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni);
       h_.sample(sj, rng.uniform(), rng.uniform(), rng.uniform(), pj, nj);
@@ -294,6 +332,7 @@ class Solver {
       if (ci <= 0 || cj <= 0) continue;
       const double kernel = ci * cj * sj.area / (kPi * r2);  // finite: linked clusters do not overlap
       mc += kernel;
+      ++facing;
       if (p.need_rays) {
         segments.push_back({pi + ni * offset, pj + nj * offset});
         weights.push_back(kernel);
@@ -306,12 +345,20 @@ class Solver {
       if (!blocked[k]) open += weights[k];
     }
     const double visibility = p.need_rays ? (weighted > 0 ? open / weighted : 0.0) : 1.0;
-    const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / n;
+    const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / drawn;
     p.F = unoccluded * visibility;
     p.rays = segments.size();
   }
 
   static constexpr uint64_t kExactClusterPairs = 64;
+
+  // The form factor kernel between two surface points, cos θ cos θ' / r² (without the constant).
+  static double point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
+    const Vec3 d = y - x;
+    const double r2 = dot(d, d);
+    if (r2 <= 0) return 0;
+    return std::max(0.0, dot(nx, d)) * std::max(0.0, -dot(ny, d)) / (r2 * r2);
+  }
 
   uint64_t polygon_pairs(const HNode& a, const HNode& b) const {
     return uint64_t(a.cluster ? h_.polygon_count(a) : 1) * uint64_t(b.cluster ? h_.polygon_count(b) : 1);
@@ -414,7 +461,10 @@ class Solver {
   double eps_ = 0, min_area_ = 0, change_ = 0;
   bool importance_ = false;
   std::vector<Pending> pending_;
+  static thread_local std::vector<double> kernel_scratch_;
 };
+
+thread_local std::vector<double> Solver::kernel_scratch_;
 
 }  // namespace
 

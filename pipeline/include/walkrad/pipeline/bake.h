@@ -14,6 +14,7 @@ namespace walkrad {
 struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
+  bool view_independent = false;  // ignore viewpoints for refinement (BF oracle); exposure still uses them
   std::string output;       // the bake folder
   std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
   double epsilon = 1e-5;    // hierarchical: refine while B·I·ρ·F (or B·A·ρ·F) > ε × emitted power
