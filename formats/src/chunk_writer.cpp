@@ -7,48 +7,11 @@
 
 #include <tiny_gltf.h>
 
+#include "gltf_build.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
 
-namespace {
-
-// Appends a tightly packed float VEC3 (or uint32 SCALAR) view + accessor; returns the accessor index.
-template <typename T>
-int append_accessor(tinygltf::Model& model, const std::vector<T>& data, int type, int component, int target,
-                    bool with_bounds) {
-  auto& buf = model.buffers[0].data;
-  const size_t offset = buf.size();
-  buf.resize(offset + data.size() * sizeof(T));
-  if (!data.empty()) std::memcpy(buf.data() + offset, data.data(), data.size() * sizeof(T));
-  while (buf.size() % 4) buf.push_back(0);
-
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = offset;
-  view.byteLength = data.size() * sizeof(T);
-  view.target = target;
-  model.bufferViews.push_back(view);
-
-  tinygltf::Accessor acc;
-  acc.bufferView = int(model.bufferViews.size()) - 1;
-  acc.componentType = component;
-  acc.type = type;
-  const size_t comps = type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
-  acc.count = data.size() / comps;
-  if (with_bounds) {
-    acc.minValues.assign(comps, INFINITY);
-    acc.maxValues.assign(comps, -INFINITY);
-    for (size_t i = 0; i < data.size(); ++i) {
-      acc.minValues[i % comps] = std::min(acc.minValues[i % comps], double(data[i]));
-      acc.maxValues[i % comps] = std::max(acc.maxValues[i % comps], double(data[i]));
-    }
-  }
-  model.accessors.push_back(acc);
-  return int(model.accessors.size()) - 1;
-}
-
-}  // namespace
 
 uint64_t write_chunk(const std::string& path, const ChunkMesh& mesh) {
   tinygltf::Model model;
@@ -68,17 +31,12 @@ uint64_t write_chunk(const std::string& path, const ChunkMesh& mesh) {
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.material = 0;
-  prim.attributes["POSITION"] = append_accessor(model, mesh.positions, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  prim.attributes["POSITION"] = gltf_build::append_vec3(model, mesh.positions, true);
   if (!mesh.normals.empty())
-    prim.attributes["NORMAL"] = append_accessor(model, mesh.normals, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                TINYGLTF_TARGET_ARRAY_BUFFER, false);
-  prim.attributes["COLOR_0"] = append_accessor(model, mesh.colors, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                               TINYGLTF_TARGET_ARRAY_BUFFER, false);
-  prim.attributes["_RADIOSITY"] = append_accessor(model, mesh.radiosity, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                  TINYGLTF_TARGET_ARRAY_BUFFER, false);
-  prim.indices = append_accessor(model, mesh.indices, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                 TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, false);
+    prim.attributes["NORMAL"] = gltf_build::append_vec3(model, mesh.normals, false);
+  prim.attributes["COLOR_0"] = gltf_build::append_vec3(model, mesh.colors, false);
+  prim.attributes["_RADIOSITY"] = gltf_build::append_vec3(model, mesh.radiosity, false);
+  prim.indices = gltf_build::append_indices(model, mesh.indices);
 
   tinygltf::Mesh m;
   m.name = "radiosity";

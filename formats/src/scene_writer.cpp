@@ -12,6 +12,7 @@
 
 #include <tiny_gltf.h>
 
+#include "gltf_build.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
@@ -20,38 +21,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Appends a tightly packed view + accessor of float VEC3 (with bounds) or uint32 SCALAR data.
-template <typename T>
-int append_accessor(tinygltf::Model& model, const std::vector<T>& data, bool positions) {
-  auto& buf = model.buffers[0].data;
-  const size_t offset = buf.size();
-  buf.resize(offset + data.size() * sizeof(T));
-  if (!data.empty()) std::memcpy(buf.data() + offset, data.data(), data.size() * sizeof(T));
-  while (buf.size() % 4) buf.push_back(0);
-
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = offset;
-  view.byteLength = data.size() * sizeof(T);
-  view.target = positions ? TINYGLTF_TARGET_ARRAY_BUFFER : TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
-  model.bufferViews.push_back(view);
-
-  tinygltf::Accessor acc;
-  acc.bufferView = int(model.bufferViews.size()) - 1;
-  acc.componentType = positions ? TINYGLTF_COMPONENT_TYPE_FLOAT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  acc.type = positions ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_SCALAR;
-  acc.count = positions ? data.size() / 3 : data.size();
-  if (positions) {
-    acc.minValues.assign(3, INFINITY);
-    acc.maxValues.assign(3, -INFINITY);
-    for (size_t i = 0; i < data.size(); ++i) {
-      acc.minValues[i % 3] = std::min(acc.minValues[i % 3], double(data[i]));
-      acc.maxValues[i % 3] = std::max(acc.maxValues[i % 3], double(data[i]));
-    }
-  }
-  model.accessors.push_back(acc);
-  return int(model.accessors.size()) - 1;
-}
 
 // True when read_gltf would merge triangle b into triangle a (b holds an edge of a reversed).
 bool shares_reversed_edge(const Polygon& a, const Polygon& b) {
@@ -162,8 +131,8 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
       tinygltf::Primitive prim;
       prim.mode = TINYGLTF_MODE_TRIANGLES;
       prim.material = int(mi);
-      prim.attributes["POSITION"] = append_accessor(model, positions, true);
-      prim.indices = append_accessor(model, indices, false);
+      prim.attributes["POSITION"] = gltf_build::append_vec3(model, positions, true);
+      prim.indices = gltf_build::append_indices(model, indices);
       mesh.primitives.push_back(prim);
     }
     model.meshes.push_back(mesh);

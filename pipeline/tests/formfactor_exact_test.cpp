@@ -20,13 +20,7 @@ namespace walkrad {
 namespace {
 
 using test::quad;
-
-std::string str(double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << x;
-  return s.str();
-}
+using test::str;
 
 Polygon triangle(Vec3 a, Vec3 b, Vec3 c) {
   Polygon p;

@@ -22,14 +22,8 @@ namespace walkrad {
 namespace {
 
 using test::quad;
+using test::str;
 using Estimator = std::function<MonteCarloEstimate(const Polygon&, const Polygon&, const RayScene*, uint64_t, uint64_t)>;
-
-std::string str(double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << x;
-  return s.str();
-}
 
 // C-14 by additivity for a wall lifted by a gap g above the floor's edge:
 // F(floor → wall over [g, g + h]) = C14(h + g) − C14(g). The gap keeps the kernel's variance finite.

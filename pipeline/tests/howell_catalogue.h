@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <utility>
 
 #include "test_scenes.h"
@@ -55,6 +57,14 @@ inline RectanglePair parallel_rectangles(double a, double b, double c) {
 // [0, h]) sharing the edge x = y = 0, z in [0, l].
 inline RectanglePair perpendicular_rectangles(double l, double w, double h) {
   return {quad({0, 0, 0}, {0, 0, l}, {w, 0, l}, {w, 0, 0}), quad({0, 0, 0}, {0, h, 0}, {0, h, l}, {0, 0, l})};
+}
+
+// A number with 3 significant digits, for test case names in failure messages.
+inline std::string str(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
 }
 
 }  // namespace walkrad::test
