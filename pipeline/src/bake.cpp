@@ -1,6 +1,7 @@
 #include "walkrad/pipeline/bake.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -170,13 +171,49 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   return r;
 }
 
+// Where the bake is still coarse, per stretch of the walkthrough: the walkthrough's frames are cut
+// into at most 8 consecutive segments; each segment's direct importance (its primary-ray hits, scaled
+// like the solver's so that Σ R = Σ A) weighs every final link: the largest and the summed
+// B_j · R_i · ρ_i · F_ij, in W. Direct importance only: light reaching the view after more bounces
+// is not attributed.
+json error_per_segment(const Hierarchy& h, const std::vector<ViewHit>& hits, size_t view_count) {
+  json out = json::array();
+  if (hits.empty() || view_count == 0) return out;
+  constexpr size_t kSegments = 8;
+  const size_t segments = std::min(kSegments, view_count);
+  double total = 0;
+  for (const ViewHit& hit : hits) total += hit.weight;
+  const double scale = total > 0 ? h[h.root()].area / total : 0.0;
+  std::vector<std::array<double, kSegments>> r(h.nodes().size(), std::array<double, kSegments>{});
+  for (const ViewHit& hit : hits) {
+    const uint32_t leaf = leaf_at(h, h.polygon_root(hit.polygon), hit.point);
+    r[leaf][std::min(segments - 1, size_t(hit.view) * segments / view_count)] += hit.weight * scale;
+  }
+  for (size_t i = h.nodes().size(); i-- > 1;)  // children come after their parents
+    for (size_t k = 0; k < segments; ++k) r[size_t(h[uint32_t(i)].parent)][k] += r[i][k];
+  std::vector<double> largest(segments, 0.0), sum(segments, 0.0);
+  for (uint32_t i = 0; i < h.nodes().size(); ++i)
+    for (const Link& l : h[i].links)
+      for (size_t k = 0; k < segments; ++k) {
+        const double e = luminance(h[l.source].B) * r[i][k] * luminance(h[i].rho) * l.F;
+        largest[k] = std::max(largest[k], e);
+        sum[k] += e;
+      }
+  for (size_t k = 0; k < segments; ++k)
+    out.push_back({{"first_view", k * view_count / segments}, {"last_view", (k + 1) * view_count / segments - 1},
+                   {"largest_w", largest[k]}, {"sum_w", sum[k]}});
+  return out;
+}
+
 MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
                                 const std::vector<Viewpoint>& views, Phases& phases) {
   auto h = std::make_shared<Hierarchy>(scene, tree);
   uint64_t view_rays = 0;
-  if (!views.empty() && !s.view_independent) {
+  std::vector<ViewHit> hits;
+  if (!views.empty()) {
     phases.start("importance");
-    h->set_view_hits(cast_view_rays(views, rays, 128, 64, view_rays));
+    hits = cast_view_rays(views, rays, 128, 64, view_rays);
+    if (!s.view_independent) h->set_view_hits(hits);
   }
   phases.start("solve");
   HierarchicalSettings hs;
@@ -209,15 +246,18 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   json rounds = json::array();
   for (const IterationStats& it : stats.iterations)
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"elements", it.elements}, {"rays", it.rays},
-                      {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)}});
+                      {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
+                      {"residual_w", vec_json(it.residual)}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
               {"unoccluded_links", stats.unoccluded_links}, {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()}};
-  r.solver = {{"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
+  r.solver = {{"error_per_segment", error_per_segment(*h, hits, views.size())},
+              {"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
               {"left_error_max_w", stats.left_error_max}, {"left_error_sum_w", stats.left_error_sum}};
   const IterationStats& last = stats.iterations.back();
   r.energy = energy_json(last.emitted, last.absorbed);
+  r.energy["residual_w"] = vec_json(last.residual);
   return r;
 }
 }  // namespace

@@ -106,6 +106,7 @@ class Solver {
     if (is.emitted == Vec3{} && !stats_.iterations.empty()) {  // no solve this round: keep the last
       is.emitted = stats_.iterations.back().emitted;
       is.absorbed = stats_.iterations.back().absorbed;
+      is.residual = stats_.iterations.back().residual;
     }
     stats_.iterations.push_back(is);
     if (progress) progress(is);
@@ -398,7 +399,7 @@ class Solver {
       }
     });
     change_ = 0;
-    is.emitted = is.absorbed = Vec3{};
+    is.emitted = is.absorbed = is.residual = Vec3{};
     push_pull(h_.root(), Vec3{}, is);
     if (importance_) {
       for (HNode& n : nodes) n.Ig = 0;
@@ -416,6 +417,9 @@ class Solver {
       const Vec3 b = n.emission + mul(n.rho, H);
       const double scale = max_component(b);
       if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
+      // The residual of the leaf's equation before this update: |E + ρH − B| A.
+      const Vec3 r = b - n.B;
+      is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;
       n.B = b;
       is.emitted += n.emission * n.area;
       is.absorbed += mul(Vec3(1, 1, 1) - n.rho, H) * n.area;

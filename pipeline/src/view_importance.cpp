@@ -27,7 +27,7 @@ std::vector<ViewHit> cast_view_rays(const std::vector<Viewpoint>& views, const R
         const double weight = c * c * c;  // solid angle of a pixel of the image plane
         total += weight;
         const RayScene::Hit hit = rays.intersect(v.position, d);
-        if (hit.hit) out.push_back({hit.polygon, hit.position, weight});
+        if (hit.hit) out.push_back({hit.polygon, hit.position, weight, uint32_t(index)});
       }
     for (ViewHit& h : out) h.weight /= total * double(count);
   });

@@ -46,6 +46,7 @@ struct IterationStats {
   uint64_t links = 0, new_links = 0, elements = 0, rays = 0;
   double change = 0;                   // largest relative change of B at the leaves
   Vec3 emitted, absorbed;              // W, at the leaves
+  Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
 };
 
 struct HierarchicalStats {

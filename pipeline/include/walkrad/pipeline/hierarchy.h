@@ -52,6 +52,7 @@ struct ViewHit {
   uint32_t polygon;
   Vec3 point;
   double weight;
+  uint32_t view = 0;  // index of the viewpoint it came from
 };
 
 class Hierarchy {
