@@ -15,8 +15,8 @@ Conventions the solver relies on:
   building is closed, and a wall between two spaces is two faces back to back, 0.1 m apart.
 - Furniture is boxes with outward faces. A face that rests on something (the floor, a table top, a shelf side
   or board, a seat) is left out, so nothing interpenetrates and no two polygons overlap in one plane.
-- Lights: 0.6 x 0.6 m emissive quads 1 cm below the ceiling, facing down; radiance 8 (warm) in rooms and
-  6 (cool) in corridors. Every reflectance is below 0.9.
+- Lights: 0.6 x 0.6 x 0.01 m panels 1 cm below the ceiling, their bottom emitting (radiance 8, warm, in
+  rooms; 6, cool, in corridors) and the rest a closed white housing. Every reflectance is below 0.9.
 
 Usage: make_office_floor.py [--rooms N] [--detail D] [--out DIR]
 Writes into DIR (default: beside this script) office-floor.glb (office-floor-N.glb, -N-walkthrough.json,
@@ -45,7 +45,7 @@ MATERIALS = [  # name, base colour (diffuse reflectance), emission (factor, stre
     ("wood", (0.5, 0.34, 0.2)), ("shelf", (0.62, 0.52, 0.38)), ("metal", (0.35, 0.35, 0.37)),
     ("fabric", (0.2, 0.3, 0.55)), ("book-red", (0.6, 0.12, 0.1)), ("book-blue", (0.12, 0.2, 0.5)),
     ("book-green", (0.15, 0.42, 0.2)), ("book-yellow", (0.72, 0.6, 0.2)), ("book-cream", (0.82, 0.78, 0.65)),
-    ("book-black", (0.08, 0.08, 0.08)),
+    ("book-black", (0.08, 0.08, 0.08)), ("housing", (0.8, 0.8, 0.8)),
     ("light-warm", (0.8, 0.8, 0.8), ((1.0, 0.92, 0.8), 8.0)), ("light-cool", (0.8, 0.8, 0.8), ((0.9, 0.95, 1.0), 6.0)),
 ]
 M = {m[0]: i for i, m in enumerate(MATERIALS)}
@@ -176,8 +176,11 @@ def shelf(rng, detail, width=1.2, depth=0.35, height=2.0, levels=5, board=0.02):
     return out
 
 
-def light(x, z, material, size=0.6):
-    return tagged(M[material], rect(1, H - 0.01, (x - size / 2, 0, z - size / 2), (x + size / 2, 0, z + size / 2), -1))
+def light(x, z, material, size=0.6, gap=0.01, thick=0.01):
+    """A panel hanging `gap` below the ceiling: its bottom emits, the rest is a closed white housing, so
+    that light reaching its back is reflected, not lost to a one-sided surface."""
+    lo, hi = (x - size / 2, H - gap - thick, z - size / 2), (x + size / 2, H - gap, z + size / 2)
+    return tagged(M[material], rect(1, lo[1], lo, hi, -1)) + tagged(M["housing"], box(lo, hi, skip=("-y",)))
 
 
 def furnish(rng, detail):
