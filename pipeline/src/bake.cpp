@@ -26,6 +26,7 @@
 #include "walkrad/pipeline/hierarchy_mesher.h"
 #include "walkrad/pipeline/view_importance.h"
 #include "walkrad/pipeline/progress.h"
+#include "walkrad/pipeline/scene_cleanup.h"
 #include "walkrad/pipeline/staged_output.h"
 #include "walkrad/pipeline/subdivision.h"
 #include "walkrad/pipeline/vertex_mesher.h"
@@ -247,7 +248,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   for (const IterationStats& it : stats.iterations)
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"elements", it.elements}, {"rays", it.rays},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
-                      {"residual_w", vec_json(it.residual)}});
+                      {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
               {"unoccluded_links", stats.unoccluded_links}, {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()}};
@@ -278,7 +279,9 @@ BakeSummary bake(const BakeSettings& s) {
 
   Phases phases(s.progress);
   phases.start("read");
-  const Scene input = read_scene(s.scene);
+  Scene input = read_scene(s.scene);
+  if (const uint64_t copies = remove_duplicate_polygons(input))
+    input.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
   std::vector<Viewpoint> views = s.views.empty() ? input.cameras : read_walkthrough(s.views);
   for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
   bool any_emitter = false;

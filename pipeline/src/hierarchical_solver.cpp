@@ -17,6 +17,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
 // Used by the refinement oracle's estimate; link form factors use each surface's own cosine.
 constexpr double kClusterCosine = 0.25;
+constexpr double kMaxRowSum = 1.5;  // see push_pull
 
 struct Pending {
   uint32_t receiver, source;
@@ -346,7 +347,9 @@ class Solver {
     // from the same samples (a control variate: no ratio, so no bias from few facing samples).
     const double occluded = (weighted - open) / drawn;
     const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / drawn;
-    p.F = std::max(0.0, unoccluded - occluded);
+    // A form factor is at most 1 and, by reciprocity (A_i F_ij = A_j F_ji ≤ A_j), at most A_j / A_i: a
+    // Monte Carlo estimate above that is noise, and a row of them would let the iteration diverge.
+    p.F = std::clamp(unoccluded - occluded, 0.0, std::min(1.0, sj.area / ri.area));
     p.rays = segments.size();
   }
 
@@ -393,13 +396,19 @@ class Solver {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         Vec3 H;
-        for (const Link& l : nodes[i].links) H += nodes[l.source].B * l.F;
+        double f = 0;
+        for (const Link& l : nodes[i].links) {
+          H += nodes[l.source].B * l.F;
+          f += l.F;
+        }
         nodes[i].H = H;
+        nodes[i].Fsum = f;
       }
     });
     change_ = 0;
     is.emitted = is.absorbed = is.residual = Vec3{};
-    push_pull(h_.root(), Vec3{}, is);
+    is.clamped_leaves = 0;
+    push_pull(h_.root(), Vec3{}, 0.0, is);
     if (importance_) {
       for (HNode& n : nodes) n.Ig = 0;
       for (const HNode& n : nodes)  // sequential: sums in a fixed order
@@ -409,10 +418,21 @@ class Solver {
     return change_;
   }
 
-  Vec3 push_pull(uint32_t i, const Vec3& down, IterationStats& is) {
+  // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well
+  // above 1 receives more than any enclosure could send it: coincident surfaces in the input (two
+  // lamp shades in one place: S = 3.5 in the MGF hospital) create power there and make the iteration
+  // diverge. Its irradiance is scaled back to a row sum of 1. Row sums slightly above 1 are left: near
+  // corners pushed averages overstate some leaves and understate others (up to 1.24 in the furnace),
+  // and clamping only one side would lose power.
+  Vec3 push_pull(uint32_t i, const Vec3& down, double down_sum, IterationStats& is) {
     HNode& n = h_[i];
-    const Vec3 H = n.H + down;
+    Vec3 H = n.H + down;
+    const double row_sum = n.Fsum + down_sum;
     if (n.child_count == 0) {
+      if (row_sum > kMaxRowSum) {
+        H = H / row_sum;
+        ++is.clamped_leaves;
+      }
       const Vec3 b = n.emission + mul(n.rho, H);
       const double scale = max_component(b);
       if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
@@ -429,7 +449,7 @@ class Solver {
     const double area = n.area;
     for (uint32_t k = 0; k < count; ++k) {
       const uint32_t c = h_.child(h_[i], k);
-      sum += push_pull(c, H, is) * h_[c].area;
+      sum += push_pull(c, H, row_sum, is) * h_[c].area;
     }
     h_[i].B = area > 0 ? sum / area : Vec3{};
     return h_[i].B;

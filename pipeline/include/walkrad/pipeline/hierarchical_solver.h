@@ -47,6 +47,7 @@ struct IterationStats {
   double change = 0;                   // largest relative change of B at the leaves
   Vec3 emitted, absorbed;              // W, at the leaves
   Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
+  uint64_t clamped_leaves = 0;         // leaves whose row sum Σ F exceeded 1.5 (irradiance scaled back)
 };
 
 struct HierarchicalStats {

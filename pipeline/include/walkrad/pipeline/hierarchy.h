@@ -40,6 +40,7 @@ struct HNode {
   Vec3 rho, emission;     // element; cluster: area averages (used by the refinement oracle)
 
   Vec3 B, H;              // radiosity, irradiance gathered this iteration
+  double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
   double R = 0;           // direct importance (leaf elements; summed up in clusters)
   double I = 0, Ig = 0;   // importance, importance gathered this iteration
   uint32_t hit_begin = 0, hit_end = 0;  // element: its view hits, Hierarchy::hits()[begin, end)
