@@ -347,9 +347,9 @@ class Solver {
     // from the same samples (a control variate: no ratio, so no bias from few facing samples).
     const double occluded = (weighted - open) / drawn;
     const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / drawn;
-    // A form factor is at most 1 and, by reciprocity (A_i F_ij = A_j F_ji ≤ A_j), at most A_j / A_i: a
-    // Monte Carlo estimate above that is noise, and a row of them would let the iteration diverge.
-    p.F = std::clamp(unoccluded - occluded, 0.0, std::min(1.0, sj.area / ri.area));
+    // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
+    // much are caught at the leaves (push_pull).
+    p.F = std::max(0.0, unoccluded - occluded);
     p.rays = segments.size();
   }
 
