@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bake_cmd->add_option("--epsilon", bs.epsilon, "hierarchical: refinement threshold, relative to the emitted power")
       ->check(CLI::PositiveNumber)->capture_default_str();
+  bake_cmd->add_option("--solver", bs.solver, "hierarchical: gauss-seidel or jacobi")
+      ->check(CLI::IsMember({"gauss-seidel", "jacobi"}))->capture_default_str();
   bake_cmd->add_flag("--view-independent", bs.view_independent,
                      "hierarchical: refine for every surface alike (BF oracle), not for what the viewpoints see");
   bake_cmd->add_option("--min-area", bs.min_area, "hierarchical: smallest element in m² (default: (diagonal/256)²)")

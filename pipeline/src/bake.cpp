@@ -222,6 +222,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.min_area = s.min_area;
   hs.rays = std::max(1, s.rays_per_point) * 16;
   hs.tolerance = std::max(s.tolerance, 1e-6);
+  hs.gauss_seidel = s.solver == "gauss-seidel";
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
@@ -246,13 +247,14 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   r.surface_exposure = exposure_of(std::move(lum));
   json rounds = json::array();
   for (const IterationStats& it : stats.iterations)
-    rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"elements", it.elements}, {"rays", it.rays},
+    rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
               {"unoccluded_links", stats.unoccluded_links}, {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()}};
   r.solver = {{"error_per_segment", error_per_segment(*h, hits, views.size())},
+              {"iteration", s.solver},
               {"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
               {"left_error_max_w", stats.left_error_max}, {"left_error_sum_w", stats.left_error_sum}};
@@ -264,7 +266,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
 }  // namespace
 
 json BakeSettings::to_json() const {
-  return {{"method", method},     {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
+  return {{"method", method},     {"solver", solver},       {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}};
 }

@@ -92,6 +92,7 @@ class Solver {
       }
       const int sweeps = settled ? 1000 : s_.sweeps;
       for (int sweep = 0; sweep < sweeps; ++sweep) {
+        ++is.sweeps;
         is.change = solve_sweep(is);
         if (is.change <= s_.tolerance) break;
       }
@@ -391,19 +392,15 @@ class Solver {
 
   // One Jacobi sweep: gather along all links, push-pull radiosity, shoot and push-pull importance.
   // Returns the largest relative change of a leaf's radiosity.
+  // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance. Jacobi
+  // gathers every node from the previous sweep's radiosity; Gauss-Seidel gathers each input polygon's
+  // quadtree just before pushing it down, so it sees what the polygons before it got this sweep
+  // (clusters still gather first). Returns the largest relative change of a leaf's radiosity.
   double solve_sweep(IterationStats& is) {
     std::vector<HNode>& nodes = h_.nodes();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        Vec3 H;
-        double f = 0;
-        for (const Link& l : nodes[i].links) {
-          H += nodes[l.source].B * l.F;
-          f += l.F;
-        }
-        nodes[i].H = H;
-        nodes[i].Fsum = f;
-      }
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        if (!s_.gauss_seidel || nodes[i].cluster) gather(nodes[i]);
     });
     change_ = 0;
     is.emitted = is.absorbed = is.residual = Vec3{};
@@ -424,7 +421,24 @@ class Solver {
   // diverge. Its irradiance is scaled back to a row sum of 1. Row sums slightly above 1 are left: near
   // corners pushed averages overstate some leaves and understate others (up to 1.24 in the furnace),
   // and clamping only one side would lose power.
+  void gather(HNode& n) {
+    Vec3 H;
+    double f = 0;
+    for (const Link& l : n.links) {
+      H += h_[l.source].B * l.F;
+      f += l.F;
+    }
+    n.H = H;
+    n.Fsum = f;
+  }
+
+  void gather_subtree(uint32_t i) {
+    gather(h_[i]);
+    for (uint32_t k = 0; k < h_[i].child_count; ++k) gather_subtree(h_.child(h_[i], k));
+  }
+
   Vec3 push_pull(uint32_t i, const Vec3& down, double down_sum, IterationStats& is) {
+    if (s_.gauss_seidel && !h_[i].cluster && h_[i].depth == 0) gather_subtree(i);
     HNode& n = h_[i];
     Vec3 H = n.H + down;
     const double row_sum = n.Fsum + down_sum;

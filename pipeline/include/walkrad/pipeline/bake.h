@@ -17,6 +17,7 @@ struct BakeSettings {
   bool view_independent = false;  // ignore viewpoints for refinement (BF oracle); exposure still uses them
   std::string output;       // the bake folder
   std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
+  std::string solver = "gauss-seidel";  // hierarchical: "gauss-seidel" (by input polygon) or "jacobi"
   double epsilon = 1e-5;    // hierarchical: refine while B·I·ρ·F (or B·A·ρ·F) > ε × emitted power
   double min_area = 0;      // hierarchical: smallest element, m² (0: (scene diagonal / 256)²)
   double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30

@@ -13,7 +13,7 @@
 //              factor to j varies over the receiver (each link's irradiance is pushed uniformly
 //              to the children; near corners their true shares differ, and row sums drift from 1);
 //   evaluate:  new links' form factors with visibility (shaft culling, then Embree rays), in parallel;
-//   solve:     gather H_i = Σ F_ij B_j along links, push-pull (irradiance pushed down, B = E + ρH at
+//   solve:     gather H_i = Σ F_ij B_j along links (Gauss-Seidel by input polygon, or Jacobi), push-pull (irradiance pushed down, B = E + ρH at
 //              the leaves, B area-averaged up), and importance shot along the same links
 //              (I_j += ρ_i F_ij I_i), pushed down by area and summed up;
 // until no link is refined and the radiosity stops changing.
@@ -40,11 +40,13 @@ struct HierarchicalSettings {
   double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps
   int max_iterations = 64;    // refine + solve rounds
   int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
+  bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
 };
 
 struct IterationStats {
   uint64_t links = 0, new_links = 0, elements = 0, rays = 0;
   double change = 0;                   // largest relative change of B at the leaves
+  int sweeps = 0;                      // gather/push-pull sweeps this round
   Vec3 emitted, absorbed;              // W, at the leaves
   Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
   uint64_t clamped_leaves = 0;         // leaves whose row sum Σ F exceeded 1.5 (irradiance scaled back)
