@@ -12,7 +12,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
 
 Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }

@@ -13,7 +13,6 @@ namespace walkrad::mgf {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Vec2 {
   double x = 0, y = 0;

@@ -11,7 +11,6 @@ namespace walkrad::mgf {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // u, v with (u, v, w) a right-handed orthonormal frame, w unit.
 void axes(const Vec3& w, Vec3& u, Vec3& v) {

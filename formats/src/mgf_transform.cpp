@@ -8,7 +8,6 @@ namespace walkrad::mgf {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // cos and sin of an angle in degrees, exact at multiples of 90° (hand-checked positions stay exact).
 void cos_sin(double degrees, double& c, double& s) {

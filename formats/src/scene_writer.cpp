@@ -19,7 +19,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 
 // True when read_gltf would merge triangle b into triangle a (b holds an edge of a reversed).

@@ -14,7 +14,6 @@ using namespace json_util;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Completes a viewpoint from position, direction and up; refuses degenerate frames.
 Viewpoint make_viewpoint(std::string name, Vec3 position, Vec3 direction, Vec3 up, double yfov, double aspect,

@@ -11,7 +11,6 @@ namespace walkrad {
 namespace {
 
 const std::string kCornell = std::string(WALKRAD_SOURCE_DIR) + "/examples/cornell-box/cornell-box.gltf";
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(GltfReader, ReadsTheCornellBox) {
   const Scene s = read_gltf(kCornell);

@@ -20,7 +20,6 @@ namespace walkrad {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 const std::string kTestData = std::string(WALKRAD_SOURCE_DIR) + "/tests/data/mgf";
 const std::string kSharedScenes = std::string(WALKRAD_SOURCE_DIR) + "/../shared/scenes/mgf";
 

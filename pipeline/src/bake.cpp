@@ -41,7 +41,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
 
 // FNV-1a 64 of a file's bytes: identifies the input in the manifest (not a security hash).
 std::string hash_file(const std::string& path) {
@@ -109,14 +108,6 @@ struct MethodResult {
   json counts, solver, energy;
 };
 
-// 0.9 / the 95th percentile of the luminance (B/π) of non-emitting surfaces.
-double exposure_of(std::vector<double> luminances) {
-  if (luminances.empty()) return 1.0;
-  const size_t p95 = std::min(luminances.size() - 1, size_t(0.95 * double(luminances.size())));
-  std::nth_element(luminances.begin(), luminances.begin() + p95, luminances.end());
-  return luminances[p95] > 0 ? 0.9 / luminances[p95] : 1.0;
-}
-
 json energy_json(const Vec3& emitted, const Vec3& absorbed) {
   return {{"emitted_w", vec_json(emitted)}, {"absorbed_w", vec_json(absorbed)}};
 }
@@ -162,7 +153,7 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   std::vector<double> lum;
   for (size_t i = 0; i < n; ++i)
     if (!scene.materials[sub->elements[i].shape.material].emits()) lum.push_back(luminance((*b)[i]) / kPi);
-  r.surface_exposure = exposure_of(std::move(lum));
+  r.surface_exposure = exposure_for(std::move(lum));
   r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
               {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations}};
   r.solver = {{"element_size", element_size}, {"converged", stats.converged}, {"last_update", stats.last_update},
@@ -244,7 +235,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   std::vector<double> lum;
   for (const HNode& n : h->nodes())
     if (!n.cluster && !n.child_count && !n.emission.x && !n.emission.y && !n.emission.z) lum.push_back(luminance(n.B) / kPi);
-  r.surface_exposure = exposure_of(std::move(lum));
+  r.surface_exposure = exposure_for(std::move(lum));
   json rounds = json::array();
   for (const IterationStats& it : stats.iterations)
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},

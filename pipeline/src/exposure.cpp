@@ -5,9 +5,6 @@
 
 namespace walkrad {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 Vec3 view_ray_direction(const Viewpoint& view, double sx, double sy) {
   const double h = std::tan(0.5 * view.yfov);
@@ -30,10 +27,14 @@ double auto_exposure(const std::vector<Viewpoint>& views, const RayScene& rays, 
         if (hit.hit && !emits(hit.polygon)) seen.push_back(luminance(radiosity_at(hit.polygon, hit.position)) / kPi);
       }
   }
-  if (seen.empty()) return 1.0;
-  const size_t p95 = std::min(seen.size() - 1, size_t(0.95 * double(seen.size())));
-  std::nth_element(seen.begin(), seen.begin() + p95, seen.end());
-  return seen[p95] > 0 ? 0.9 / seen[p95] : 1.0;
+  return exposure_for(std::move(seen));
+}
+
+double exposure_for(std::vector<double> luminances) {
+  if (luminances.empty()) return 1.0;
+  const size_t p95 = std::min(luminances.size() - 1, size_t(0.95 * double(luminances.size())));
+  std::nth_element(luminances.begin(), luminances.begin() + p95, luminances.end());
+  return luminances[p95] > 0 ? 0.9 / luminances[p95] : 1.0;
 }
 
 }  // namespace walkrad

@@ -9,7 +9,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Gauss-Legendre abscissae and weights on [0, 1], orders 1..8.
 struct GaussRule {

@@ -16,7 +16,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Edge {
   Vec3 a, d;  // start and unit direction

@@ -14,7 +14,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Samples per random stream: the streams, not the threads, fix which sample gets which numbers.
 constexpr uint64_t kChunk = 4096;

@@ -10,7 +10,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A face's camera: `forward` from the point to the face's centre, `right` and `up` spanning it.
 // The top face sees up/forward in [-1, 1]; a side face only [0, 1] (above the horizon).

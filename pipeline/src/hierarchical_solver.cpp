@@ -13,7 +13,6 @@ namespace walkrad {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
 // Used by the refinement oracle's estimate; link form factors use each surface's own cosine.
 constexpr double kClusterCosine = 0.25;

@@ -1,4 +1,5 @@
 #include "walkrad/pipeline/hierarchy_mesher.h"
+#include "walkrad/pipeline/vertex_mesher.h"
 
 #include <algorithm>
 #include <map>
@@ -7,7 +8,6 @@
 namespace walkrad {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 bool contains(const HNode& e, const Vec3& p) {
   const Polygon& s = e.shape;
@@ -57,14 +57,7 @@ ChunkMesh mesh_hierarchy(const Hierarchy& h, double exposure) {
   uint32_t next = 0;
   for (auto& [key, a] : vertices) {
     a.index = next++;
-    const Vec3 b = a.sum / a.area, c = b * (exposure / kPi);
-    const Vec3 p(std::get<1>(key), std::get<2>(key), std::get<3>(key));
-    for (int k = 0; k < 3; ++k) {
-      mesh.positions.push_back(float(p[k]));
-      mesh.normals.push_back(float(a.normal[k]));
-      mesh.radiosity.push_back(float(b[k]));
-      mesh.colors.push_back(float(std::clamp(c[k], 0.0, 1.0)));
-    }
+    append_vertex(mesh, Vec3(std::get<1>(key), std::get<2>(key), std::get<3>(key)), a.normal, a.sum / a.area, exposure);
   }
   for (uint32_t i : leaves) {
     const HNode& n = h[i];

@@ -4,8 +4,15 @@
 
 namespace walkrad {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
+
+void append_vertex(ChunkMesh& mesh, const Vec3& position, const Vec3& normal, const Vec3& radiosity, double exposure) {
+  const Vec3 colour = radiosity * (exposure / kPi);
+  for (int k = 0; k < 3; ++k) {
+    mesh.positions.push_back(float(position[k]));
+    mesh.normals.push_back(float(normal[k]));
+    mesh.radiosity.push_back(float(radiosity[k]));
+    mesh.colors.push_back(float(std::clamp(colour[k], 0.0, 1.0)));
+  }
 }
 
 ChunkMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosity, double exposure) {
@@ -29,14 +36,7 @@ ChunkMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosi
   for (size_t v = 0; v < sub.vertices.size(); ++v) {
     if (weight[v] <= 0) continue;
     remap[v] = uint32_t(mesh.vertex_count());
-    const Vec3 b = sum[v] / weight[v];
-    const Vec3 c = b * (exposure / kPi);
-    for (int k = 0; k < 3; ++k) {
-      mesh.positions.push_back(float(sub.vertices[v][k]));
-      mesh.normals.push_back(float(normal[v][k]));
-      mesh.radiosity.push_back(float(b[k]));
-      mesh.colors.push_back(float(std::clamp(c[k], 0.0, 1.0)));  // glTF: COLOR_0 lies in [0, 1]
-    }
+    append_vertex(mesh, sub.vertices[v], normal[v], sum[v] / weight[v], exposure);
   }
   for (const Element& el : sub.elements) {
     const auto& c = el.corner;

@@ -107,14 +107,14 @@ TEST(ExactFormFactor, PointToDiscByAFanOfTriangles) {
       const Vec3 p(0, h, 0), normal(0, -1, 0);  // above the disc in y = 0, looking down
       double sum = 0;
       for (int k = 0; k < n; ++k) {
-        const double a0 = 2 * test::kPi * k / n, a1 = 2 * test::kPi * (k + 1) / n;
+        const double a0 = 2 * kPi * k / n, a1 = 2 * kPi * (k + 1) / n;
         sum += point_to_polygon(p, normal,
                                 triangle({0, 0, 0}, {r * std::cos(a0), 0, r * std::sin(a0)},
                                          {r * std::cos(a1), 0, r * std::sin(a1)}));
       }
       EXPECT_NEAR(sum, test::regular_ngon_on_axis(n, r, h), 1e-12) << "h " << h << ", N " << n;
       const double gap = test::disc_on_axis(r, h) - sum;
-      const double predicted = 2 * test::kPi * test::kPi / (3.0 * n * n) * r * r * h * h / std::pow(r * r + h * h, 2);
+      const double predicted = 2 * kPi * kPi / (3.0 * n * n) * r * r * h * h / std::pow(r * r + h * h, 2);
       EXPECT_NEAR(gap / predicted, 1.0, 2e-3) << "h " << h << ", N " << n;
     }
   }
@@ -129,7 +129,7 @@ TEST(ExactFormFactor, TinyReceiverSeesTheFanLikeAPoint) {
                                 {-delta / 2, h, delta / 2});  // facing −y
   double sum = 0;
   for (int k = 0; k < n; ++k) {
-    const double a0 = 2 * test::kPi * k / n, a1 = 2 * test::kPi * (k + 1) / n;
+    const double a0 = 2 * kPi * k / n, a1 = 2 * kPi * (k + 1) / n;
     // Counter-clockwise seen from +y: the triangles face the receiver.
     sum += polygon_to_polygon_exact(receiver, triangle({0, 0, 0}, {r * std::cos(a1), 0, r * std::sin(a1)},
                                                        {r * std::cos(a0), 0, r * std::sin(a0)}));
@@ -148,11 +148,11 @@ Polygon random_polygon(Rng& rng) {
   const Vec3 t = normalize(cross(n, std::fabs(n.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0))), b = cross(n, t);
   const int count = rng.uniform() < 0.4 ? 3 : 4;
   // Corners at increasing angles on an ellipse: convex, counter-clockwise about n.
-  const double ra = 0.3 + rng.uniform(), rb = 0.3 + rng.uniform(), start = 2 * test::kPi * rng.uniform();
+  const double ra = 0.3 + rng.uniform(), rb = 0.3 + rng.uniform(), start = 2 * kPi * rng.uniform();
   Polygon p;
   p.count = uint8_t(count);
   for (int k = 0; k < count; ++k) {
-    const double angle = start + 2 * test::kPi * (k + 0.8 * rng.uniform()) / count;
+    const double angle = start + 2 * kPi * (k + 0.8 * rng.uniform()) / count;
     p.v[k] = centre + t * (ra * std::cos(angle)) + b * (rb * std::sin(angle));
   }
   if (count == 3) p.v[3] = p.v[2];
@@ -260,7 +260,7 @@ TEST(ExactFormFactor, AdditivityOverASplitSource) {
 TEST(ExactFormFactor, DistantSmallPolygonsTendToThePointFormula) {
   for (const double d : {10.0, 100.0, 1000.0, 1e4}) {
     const auto [lower, upper] = test::parallel_rectangles(1, 1, d);
-    const double point = 1.0 / (test::kPi * d * d), exact = polygon_to_polygon_exact(lower, upper);
+    const double point = 1.0 / (kPi * d * d), exact = polygon_to_polygon_exact(lower, upper);
     EXPECT_NEAR(exact / point, 1 - 2 / (3 * d * d), std::max(5e-8, 1 / (d * d * d * d))) << d;
     if (d <= 100) {
       EXPECT_NEAR(exact, test::howell_c11(1, 1, d), 1e-12) << d;

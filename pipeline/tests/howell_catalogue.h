@@ -13,7 +13,6 @@
 
 namespace walkrad::test {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // C-11: parallel, directly opposed rectangles a × b at distance c, F from one to the other.
 inline double howell_c11(double a, double b, double c) {

@@ -9,7 +9,6 @@
 namespace walkrad {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(Mat4, IdentityIsNeutral) {
   Mat4 a = Mat4::identity();

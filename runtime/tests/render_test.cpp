@@ -20,7 +20,6 @@ namespace walkrad {
 namespace {
 
 constexpr int kSize = 64;
-constexpr double kPi = 3.14159265358979323846;
 
 // Appends a triangle in the plane z with one colour, vertices in the order given.
 void add_triangle(ChunkMesh& mesh, float z, const float (&xy)[6], const Vec3& color) {

@@ -7,6 +7,8 @@
 
 namespace walkrad {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 struct Vec3 {
   double x = 0, y = 0, z = 0;
 

@@ -22,4 +22,8 @@ double auto_exposure(const std::vector<Viewpoint>& views, const RayScene& rays, 
                      const std::function<Vec3(uint32_t, const Vec3&)>& radiosity_at,
                      const std::function<bool(uint32_t)>& emits, uint64_t& rays_cast);
 
+// The exposure mapping the 95th percentile of these luminances (B/π) to 0.9; 1 when there are none or
+// all are dark. For bakes without viewpoints, over the surfaces themselves.
+double exposure_for(std::vector<double> luminances);
+
 }  // namespace walkrad
