@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "../pipeline/tests/radiosity_image.h"
+#include "walkrad/formats/bake_folder.h"
 #include "walkrad/formats/manifest.h"
 
 int main(int argc, char** argv) {
@@ -17,11 +18,11 @@ int main(int argc, char** argv) {
     const std::string ref_dir = argv[1];
     const Manifest m = read_manifest(ref_dir + "/manifest.json");
     if (m.viewpoints.empty()) throw std::runtime_error("the reference bake has no viewpoint");
-    const auto ref = test::radiosity_image(read_chunk(ref_dir + "/" + m.chunks.at(0).file), m.viewpoints[0], 96);
+    const auto ref = test::radiosity_image(read_bake_mesh(ref_dir), m.viewpoints[0], 96);
     for (int i = 2; i < argc; ++i) {
       const std::string dir = argv[i];
       const Manifest o = read_manifest(dir + "/manifest.json");
-      const auto img = test::radiosity_image(read_chunk(dir + "/" + o.chunks.at(0).file), m.viewpoints[0], 96);
+      const auto img = test::radiosity_image(read_bake_mesh(dir), m.viewpoints[0], 96);
       std::printf("%s %.5f\n", dir.c_str(), test::relative_rms(img, ref, 20.0));
     }
   } catch (const std::exception& e) {

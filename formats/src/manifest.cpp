@@ -36,7 +36,8 @@ std::string chunk_file_name(const json& j, const std::string& file, const std::s
 json manifest_to_json(const Manifest& m) {
   json chunks = json::array();
   for (const ChunkInfo& c : m.chunks)
-    chunks.push_back({{"file", c.file}, {"bounds", bounds_to_json(c.bounds)}, {"triangles", c.triangles}, {"bytes", c.bytes}});
+    chunks.push_back({{"file", c.file}, {"bounds", bounds_to_json(c.bounds)}, {"triangles", c.triangles}, {"bytes", c.bytes},
+                      {"importance", c.importance}});
   json views = json::array();
   for (const Viewpoint& v : m.viewpoints) views.push_back(viewpoint_to_json(v));
   return {{"format", kManifestFormat}, {"version", kManifestVersion}, {"tool", m.tool},
@@ -63,7 +64,7 @@ Manifest manifest_from_json(const json& j, const std::string& file) {
   if (!chunks.is_array()) throw InputError(file, "/chunks", "expected an array");
   for (size_t i = 0; i < chunks.size(); ++i) {
     const std::string p = "/chunks/" + std::to_string(i);
-    check_keys(chunks[i], {"file", "bounds", "triangles", "bytes"}, file, p);
+    check_keys(chunks[i], {"file", "bounds", "triangles", "bytes", "importance"}, file, p);
     ChunkInfo c;
     c.file = chunk_file_name(member(chunks[i], "file", file, p), file, p + "/file");
     c.bounds = bounds_from_json(member(chunks[i], "bounds", file, p), file, p + "/bounds");
@@ -75,6 +76,18 @@ Manifest manifest_from_json(const json& j, const std::string& file) {
   if (!views.is_array()) throw InputError(file, "/viewpoints", "expected an array");
   for (size_t i = 0; i < views.size(); ++i)
     m.viewpoints.push_back(viewpoint_from_json(views[i], file, "/viewpoints/" + std::to_string(i)));
+  // Importance: one fraction in [0, 1] per viewpoint, read once the viewpoints are known.
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    const std::string p = "/chunks/" + std::to_string(i) + "/importance";
+    const json& imp = member(chunks[i], "importance", file, "/chunks/" + std::to_string(i));
+    if (!imp.is_array() || imp.size() != views.size())
+      throw InputError(file, p, "expected an array with one number per viewpoint (" + std::to_string(views.size()) + ")");
+    for (size_t v = 0; v < imp.size(); ++v) {
+      const double x = number(imp[v], file, p + "/" + std::to_string(v));
+      if (!(x >= 0 && x <= 1)) throw InputError(file, p + "/" + std::to_string(v), "must be a fraction in [0, 1]");
+      m.chunks[i].importance.push_back(float(x));
+    }
+  }
   m.settings = member(j, "settings", file, "");
   return m;
 }

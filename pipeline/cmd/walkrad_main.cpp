@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024))->capture_default_str();
   bake_cmd->add_option("--exposure", bs.exposure, "display colour = radiance × exposure (default: automatic)")
       ->check(CLI::NonNegativeNumber);
+  bake_cmd->add_option("--chunk-triangles", bs.chunk_triangles, "largest streaming chunk, in triangles")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
   bake_cmd->add_option("--threads", bs.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   bake_cmd->add_option("--tolerance", bs.tolerance, "solver stop: largest relative update")->capture_default_str();
   bool quiet = false;

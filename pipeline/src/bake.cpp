@@ -17,6 +17,7 @@
 #include "walkrad/formats/gltf_reader.h"
 #include "walkrad/formats/manifest.h"
 #include "walkrad/formats/walkthrough.h"
+#include "walkrad/pipeline/chunking.h"
 #include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/contact_split.h"
 #include "walkrad/pipeline/exposure.h"
@@ -103,7 +104,7 @@ size_t element_at(const Subdivision& sub, uint32_t polygon, const Vec3& p) {
 // exposure), a mesher, and its counters for report.json.
 struct MethodResult {
   std::function<Vec3(uint32_t, const Vec3&)> radiosity_at;
-  std::function<ChunkMesh(double)> mesh;
+  std::function<SurfaceMesh(double)> mesh;
   double surface_exposure = 1.0;  // exposure from the surfaces themselves, for bakes without viewpoints
   json counts, solver, energy;
 };
@@ -259,7 +260,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
 json BakeSettings::to_json() const {
   return {{"method", method},     {"solver", solver},       {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
-          {"tolerance", tolerance}, {"max_iterations", max_iterations}};
+          {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles}};
 }
 
 BakeSummary bake(const BakeSettings& s) {
@@ -303,23 +304,33 @@ BakeSummary bake(const BakeSettings& s) {
   }
 
   phases.start("mesh");
-  const ChunkMesh mesh = result.mesh(exposure);
+  const SurfaceMesh surface = result.mesh(exposure);
+
+  phases.start("chunks");
+  const ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);
+  uint64_t chunk_rays = 0;
+  const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), 32, chunk_rays);
 
   phases.start("write");
   Manifest manifest;
   manifest.tool = std::string("walkrad ") + WALKRAD_VERSION;
   manifest.scene_file = s.scene;
   manifest.scene_hash = hash_file(s.scene);
-  manifest.bounds = mesh.bounds();
+  manifest.bounds = surface.mesh.bounds();
   manifest.exposure = exposure;
   manifest.viewpoints = views;
   manifest.settings = s.to_json();
-  ChunkInfo chunk;
-  chunk.file = "chunk-0000.glb";
-  chunk.bounds = manifest.bounds;
-  chunk.triangles = mesh.triangle_count();
-  chunk.bytes = write_chunk(out.path(chunk.file), mesh);
-  manifest.chunks.push_back(chunk);
+  for (size_t c = 0; c < cut.meshes.size(); ++c) {
+    char name[32];
+    std::snprintf(name, sizeof name, "chunk-%04zu.glb", c);
+    ChunkInfo chunk;
+    chunk.file = name;
+    chunk.bounds = cut.meshes[c].bounds();
+    chunk.triangles = cut.meshes[c].triangle_count();
+    chunk.bytes = write_chunk(out.path(chunk.file), cut.meshes[c]);
+    chunk.importance = importance[c];
+    manifest.chunks.push_back(chunk);
+  }
   write_json(out.path("manifest.json"), manifest_to_json(manifest));
   phases.finish();
 
@@ -329,7 +340,9 @@ BakeSummary bake(const BakeSettings& s) {
   counts["polygons"] = scene.polygons.size();
   counts["contact_cuts"] = split_stats.cuts;
   counts["exposure_rays"] = exposure_rays;
-  counts["triangles"] = mesh.triangle_count();
+  counts["triangles"] = surface.mesh.triangle_count();
+  counts["chunks"] = cut.meshes.size();
+  counts["chunk_importance_rays"] = chunk_rays;
   counts["viewpoints"] = views.size();
   counts["dropped_degenerate"] = input.dropped_degenerate;
   json report = {
@@ -343,7 +356,7 @@ BakeSummary bake(const BakeSettings& s) {
   BakeSummary summary;
   summary.output = s.output;
   summary.elements = result.counts.value("elements", uint64_t(0));
-  summary.triangles = mesh.triangle_count();
+  summary.triangles = surface.mesh.triangle_count();
   summary.viewpoints = views.size();
   summary.exposure = exposure;
   summary.seconds = seconds;

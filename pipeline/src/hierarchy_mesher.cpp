@@ -30,7 +30,7 @@ uint32_t leaf_at(const Hierarchy& h, uint32_t node, const Vec3& p) {
   return node;
 }
 
-ChunkMesh mesh_hierarchy(const Hierarchy& h, double exposure) {
+SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure) {
   // Vertices keyed by (input polygon, position): leaves of one polygon share them; positions of a
   // shared corner are bit-identical since every midpoint is computed from the same two corners.
   using Key = std::tuple<uint32_t, double, double, double>;
@@ -53,7 +53,8 @@ ChunkMesh mesh_hierarchy(const Hierarchy& h, double exposure) {
       a.normal = n.normal;
     }
   }
-  ChunkMesh mesh;
+  SurfaceMesh surface;
+  ChunkMesh& mesh = surface.mesh;
   uint32_t next = 0;
   for (auto& [key, a] : vertices) {
     a.index = next++;
@@ -65,8 +66,9 @@ ChunkMesh mesh_hierarchy(const Hierarchy& h, double exposure) {
     for (int k = 0; k < n.shape.count; ++k) v[k] = vertices[Key(n.polygon, n.shape.v[k].x, n.shape.v[k].y, n.shape.v[k].z)].index;
     mesh.indices.insert(mesh.indices.end(), {v[0], v[1], v[2]});
     if (n.shape.count == 4) mesh.indices.insert(mesh.indices.end(), {v[0], v[2], v[3]});
+    surface.triangle_polygon.resize(mesh.triangle_count(), n.polygon);
   }
-  return mesh;
+  return surface;
 }
 
 }  // namespace walkrad

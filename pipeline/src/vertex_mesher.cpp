@@ -15,7 +15,7 @@ void append_vertex(ChunkMesh& mesh, const Vec3& position, const Vec3& normal, co
   }
 }
 
-ChunkMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosity, double exposure) {
+SurfaceMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosity, double exposure) {
   // Grid vertices belong to one polygon, so averaging over the elements that name a vertex stays
   // inside that polygon.
   std::vector<Vec3> sum(sub.vertices.size());
@@ -32,7 +32,8 @@ ChunkMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosi
 
   // Keep only vertices some element uses, renumbered in order (deterministic).
   std::vector<uint32_t> remap(sub.vertices.size(), UINT32_MAX);
-  ChunkMesh mesh;
+  SurfaceMesh surface;
+  ChunkMesh& mesh = surface.mesh;
   for (size_t v = 0; v < sub.vertices.size(); ++v) {
     if (weight[v] <= 0) continue;
     remap[v] = uint32_t(mesh.vertex_count());
@@ -42,8 +43,9 @@ ChunkMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosi
     const auto& c = el.corner;
     mesh.indices.insert(mesh.indices.end(), {remap[c[0]], remap[c[1]], remap[c[2]]});
     if (el.shape.count == 4) mesh.indices.insert(mesh.indices.end(), {remap[c[0]], remap[c[2]], remap[c[3]]});
+    surface.triangle_polygon.resize(mesh.triangle_count(), el.polygon);
   }
-  return mesh;
+  return surface;
 }
 
 }  // namespace walkrad

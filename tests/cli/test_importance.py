@@ -43,7 +43,12 @@ def read_glb(path):
             accessor(prim["indices"], "I", 1))
 
 
-positions, radiosity, indices = read_glb(os.path.join(bake, "chunk-0000.glb"))
+positions, radiosity, indices = [], [], []
+for chunk in json.load(open(os.path.join(bake, "manifest.json")))["chunks"]:
+    p, r, i = read_glb(os.path.join(bake, chunk["file"]))
+    indices += [len(positions) + k for k in i]
+    positions += p
+    radiosity += r
 rooms = json.load(open(os.path.join(work, "office-floor-4-rooms.json")))["rooms"]
 failures = []
 if not all(math.isfinite(c) and c >= 0 for b in radiosity for c in b):

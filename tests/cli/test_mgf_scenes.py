@@ -30,12 +30,14 @@ for name in names:
     report = json.load(open(os.path.join(out, "report.json")))
     e = report["energy"]
     balance = sum(e["absorbed_w"]) / sum(e["emitted_w"])
-    data = open(os.path.join(out, "chunk-0000.glb"), "rb").read()
-    json_len = struct.unpack_from("<I", data, 12)[0]
-    doc = json.loads(data[20:20 + json_len])
-    acc = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["_RADIOSITY"]]
-    view = doc["bufferViews"][acc["bufferView"]]
-    values = struct.unpack_from(f"<{3 * acc['count']}f", data, 20 + json_len + 8 + view.get("byteOffset", 0))
+    values = []
+    for chunk in json.load(open(os.path.join(out, "manifest.json")))["chunks"]:
+        data = open(os.path.join(out, chunk["file"]), "rb").read()
+        json_len = struct.unpack_from("<I", data, 12)[0]
+        doc = json.loads(data[20:20 + json_len])
+        acc = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["_RADIOSITY"]]
+        view = doc["bufferViews"][acc["bufferView"]]
+        values += struct.unpack_from(f"<{3 * acc['count']}f", data, 20 + json_len + 8 + view.get("byteOffset", 0))
     finite = all(math.isfinite(v) and v >= 0 for v in values)
     print(f"{name}: {report['counts']['input_polygons']} polygons, {report['counts']['links']} links, "
           f"{report['total_seconds']:.1f} s, absorbed/emitted {balance:.3f}, radiosity finite: {finite}")

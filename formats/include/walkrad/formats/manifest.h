@@ -20,6 +20,9 @@ struct ChunkInfo {
   Bounds bounds;
   uint64_t triangles = 0;
   uint64_t bytes = 0;
+  // Per viewpoint of the manifest: the fraction of that viewpoint's image the chunk covers (0..1).
+  // A runtime streams first what the viewpoints ahead will see.
+  std::vector<float> importance;
 };
 
 struct Manifest {

@@ -1,7 +1,7 @@
 // bake: the offline pipeline end to end, as one function over plain settings (main() stays thin).
 // read scene + walkthrough → split polygons at contacts → solve (hierarchical: importance from the
 // viewpoints, refine/gather/push-pull over links; classic: uniform elements, full form factor matrix,
-// Gauss-Seidel) → exposure → vertex mesh → bake folder (manifest.json, chunk-0000.glb, report.json),
+// Gauss-Seidel) → exposure → vertex mesh → bake folder (manifest.json, chunk-NNNN.glb, report.json),
 // staged and swapped into place only when complete.
 #pragma once
 
@@ -24,6 +24,7 @@ struct BakeSettings {
   int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
   double exposure = 0;      // 0: automatic from the viewpoints
   int threads = 0;          // 0: all cores
+  uint64_t chunk_triangles = 16384;  // largest chunk, triangles (a lone leaf cluster may exceed it)
   double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity
   int max_iterations = 10000;
   bool progress = true;     // progress lines on stderr

@@ -6,11 +6,12 @@
 
 #include "walkrad/formats/chunk.h"
 #include "walkrad/pipeline/hierarchy.h"
+#include "walkrad/pipeline/vertex_mesher.h"
 
 namespace walkrad {
 
 // exposure: display colour = B/π × exposure, clamped to [0, 1].
-ChunkMesh mesh_hierarchy(const Hierarchy& h, double exposure);
+SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure);
 
 // The leaf element containing a point of an input polygon (for exposure and tests).
 uint32_t leaf_at(const Hierarchy& h, uint32_t polygon_root, const Vec3& p);
