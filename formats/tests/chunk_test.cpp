@@ -1,6 +1,7 @@
 // Chunks: what write_chunk writes, read_chunk reads back exactly; truncated files are refused.
 #include "walkrad/formats/chunk.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -39,6 +40,56 @@ TEST(Chunk, RoundTripsExactly) {
   EXPECT_EQ(back.radiosity, m.radiosity);
   EXPECT_EQ(back.indices, m.indices);
   std::filesystem::remove(path);
+}
+
+// A wavy grid with smooth colours and radiosity spanning a large range.
+ChunkMesh grid_mesh(int n) {
+  ChunkMesh m;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) {
+      const float u = float(x) / n, v = float(y) / n;
+      m.positions.insert(m.positions.end(), {3 * u, 2 * v, 0.1f * std::sin(7 * u) * std::cos(5 * v)});
+      m.normals.insert(m.normals.end(), {0, 0, 1});
+      m.colors.insert(m.colors.end(), {u, v, 0.002f * u * v});  // dark values: sRGB is steepest there
+      m.radiosity.insert(m.radiosity.end(), {40 * u * u, 3 * v, 0.01f + u * v});
+    }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const uint32_t a = uint32_t(y * (n + 1) + x), b = a + 1, c = a + uint32_t(n) + 2, d = a + uint32_t(n) + 1;
+      m.indices.insert(m.indices.end(), {a, b, c, a, c, d});
+    }
+  return m;
+}
+
+double srgb(double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055; }
+
+// Draco: 5× smaller at least, and every decoded value within the stated error (vertices matched by
+// position, since Draco reorders them).
+TEST(Chunk, DracoDecodesWithinTheStatedErrorAndIsSmaller) {
+  const ChunkMesh m = grid_mesh(64);
+  const double position_tolerance = 1e-5 * length(m.bounds().diagonal()), radiosity_tolerance = 1e-3;
+  const ChunkEncoding enc = draco_encoding(m.bounds(), position_tolerance, 40.0, radiosity_tolerance);
+  EXPECT_LE(enc.position.max_error(), position_tolerance);
+  EXPECT_LE(enc.radiosity.max_error(), radiosity_tolerance);
+  const std::string plain = temp_path("plain.glb"), draco = temp_path("draco.glb");
+  const uint64_t plain_bytes = write_chunk(plain, m), draco_bytes = write_chunk(draco, m, enc);
+  EXPECT_GE(double(plain_bytes) / double(draco_bytes), 5.0) << plain_bytes << " / " << draco_bytes;
+  const ChunkMesh back = read_chunk(draco);
+  ASSERT_EQ(back.triangle_count(), m.triangle_count());
+  ASSERT_EQ(back.vertex_count(), m.vertex_count());
+  const int n = 64;
+  for (size_t v = 0; v < back.vertex_count(); ++v) {
+    // The grid vertex this one came from: x and y are quantised far finer than the grid's spacing.
+    const int x = int(std::lround(back.positions[3 * v] / 3 * n)), y = int(std::lround(back.positions[3 * v + 1] / 2 * n));
+    const size_t o = size_t(y * (n + 1) + x);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(std::fabs(back.positions[3 * v + k] - m.positions[3 * o + k]), position_tolerance * 1.001);
+      EXPECT_LE(std::fabs(srgb(back.colors[3 * v + k]) - srgb(m.colors[3 * o + k])), 0.5 / 255) << "vertex " << v;
+      EXPECT_LE(std::fabs(back.radiosity[3 * v + k] - m.radiosity[3 * o + k]), radiosity_tolerance * 1.001);
+    }
+  }
+  std::filesystem::remove(plain);
+  std::filesystem::remove(draco);
 }
 
 TEST(Chunk, WritingIsDeterministic) {

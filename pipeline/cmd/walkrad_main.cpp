@@ -11,6 +11,8 @@
 #include "walkrad/formats/scene_reader.h"
 #include "walkrad/formats/scene_writer.h"
 #include "walkrad/pipeline/bake.h"
+#include "walkrad/pipeline/bake_diff.h"
+#include "walkrad/pipeline/bake_inspect.h"
 
 int main(int argc, char** argv) {
   using namespace walkrad;
@@ -40,6 +42,14 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   bake_cmd->add_option("--chunk-triangles", bs.chunk_triangles, "largest streaming chunk, in triangles")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
+  bool no_compression = false;
+  bake_cmd->add_flag("--no-compression", no_compression, "write plain glTF chunks (default: Draco)");
+  bake_cmd->add_option("--position-tolerance", bs.position_tolerance,
+                       "Draco: largest position error, as a fraction of the scene's diagonal")
+      ->check(CLI::Range(1e-9, 1e-2))->capture_default_str();
+  bake_cmd->add_option("--radiosity-tolerance", bs.radiosity_tolerance,
+                       "Draco: largest _RADIOSITY error, as a fraction of the radiosity shown as white")
+      ->check(CLI::Range(1e-9, 1.0))->capture_default_str();
   bake_cmd->add_option("--threads", bs.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   bake_cmd->add_option("--tolerance", bs.tolerance, "solver stop: largest relative update")->capture_default_str();
   bool quiet = false;
@@ -56,6 +66,25 @@ int main(int argc, char** argv) {
         return ext == ".glb" || ext == ".gltf" ? std::string() : std::string("the output must end in .glb or .gltf");
       });
 
+  // diff: two bake folders compared within a tolerance (golden-file tests).
+  std::string diff_a, diff_b;
+  DiffSettings ds;
+  CLI::App* diff_cmd = app.add_subcommand("diff", "compare two bake folders: manifests, geometry, _RADIOSITY (exit 7 if they differ)");
+  diff_cmd->add_option("a", diff_a, "bake folder A (the reference)")->required();
+  diff_cmd->add_option("b", diff_b, "bake folder B")->required();
+  diff_cmd->add_option("--tolerance", ds.tolerance,
+                       "radiosity: largest relative RMS difference (and 10× this for the largest single difference)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  diff_cmd->add_option("--position-tolerance", ds.position_tolerance, "vertex matching, fraction of the bake's diagonal")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+
+  // inspect: what a bake folder holds; optionally its whole surface as JSON for scripts.
+  std::string inspect_dir, inspect_mesh_json;
+  CLI::App* inspect_cmd = app.add_subcommand("inspect", "print what a bake folder holds");
+  inspect_cmd->add_option("bake", inspect_dir, "bake folder")->required();
+  inspect_cmd->add_option("--mesh-json", inspect_mesh_json,
+                          "write the whole surface (positions, normals, colours, radiosity, indices) as JSON to this file");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -66,6 +95,7 @@ int main(int argc, char** argv) {
   try {
     if (bake_cmd->parsed()) {
       bs.progress = !quiet;
+      bs.compress = !no_compression;
       if (bs.output.empty()) {
         std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
         bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
@@ -86,6 +116,16 @@ int main(int argc, char** argv) {
                   convert_scene.c_str(), convert_output.c_str(), scene.polygons.size(), scene.materials.size(), emitting,
                   scene.cameras.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
+    if (diff_cmd->parsed()) {
+      const BakeDiff d = diff_bakes(diff_a, diff_b, ds);
+      for (const std::string& n : d.notes) std::printf("note: %s\n", n.c_str());
+      for (const std::string& x : d.differences) std::printf("differs: %s\n", x.c_str());
+      std::printf("walkrad: %s: %zu / %zu vertices, %zu unmatched, radiosity relative RMS %.3g, largest %.3g\n",
+                  d.same() ? "same within tolerance" : "the bakes differ", d.vertices_a, d.vertices_b, d.unmatched,
+                  d.radiosity_rms, d.radiosity_max);
+      return d.same() ? kExitOk : kExitDiffers;
+    }
+    if (inspect_cmd->parsed()) inspect_bake(inspect_dir, inspect_mesh_json);
     return kExitOk;
   } catch (const InputError& e) {
     std::fprintf(stderr, "walkrad: error: %s\n", e.what());

@@ -17,6 +17,7 @@
 #include "walkrad/formats/gltf_reader.h"
 #include "walkrad/formats/manifest.h"
 #include "walkrad/formats/walkthrough.h"
+#include "walkrad/pipeline/chunk_optimizer.h"
 #include "walkrad/pipeline/chunking.h"
 #include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/contact_split.h"
@@ -260,7 +261,8 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
 json BakeSettings::to_json() const {
   return {{"method", method},     {"solver", solver},       {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
-          {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles}};
+          {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
+          {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance}};
 }
 
 BakeSummary bake(const BakeSettings& s) {
@@ -307,7 +309,16 @@ BakeSummary bake(const BakeSettings& s) {
   const SurfaceMesh surface = result.mesh(exposure);
 
   phases.start("chunks");
-  const ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);
+  ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);
+  for (ChunkMesh& m : cut.meshes) optimize_chunk(m);
+  ChunkEncoding encoding;
+  if (s.compress) {
+    // One grid for every chunk (borders quantise alike). White on screen is B = π / exposure.
+    float radiosity_max = 0;
+    for (float b : surface.mesh.radiosity) radiosity_max = std::max(radiosity_max, b);
+    encoding = draco_encoding(surface.mesh.bounds(), s.position_tolerance * length(bounds.diagonal()), radiosity_max,
+                              s.radiosity_tolerance * kPi / exposure);
+  }
   uint64_t chunk_rays = 0;
   const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), 32, chunk_rays);
 
@@ -327,7 +338,7 @@ BakeSummary bake(const BakeSettings& s) {
     chunk.file = name;
     chunk.bounds = cut.meshes[c].bounds();
     chunk.triangles = cut.meshes[c].triangle_count();
-    chunk.bytes = write_chunk(out.path(chunk.file), cut.meshes[c]);
+    chunk.bytes = write_chunk(out.path(chunk.file), cut.meshes[c], encoding);
     chunk.importance = importance[c];
     manifest.chunks.push_back(chunk);
   }

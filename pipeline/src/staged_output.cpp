@@ -2,10 +2,12 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include "walkrad/formats/error.h"
@@ -23,7 +25,15 @@ StagedOutput::StagedOutput(std::string destination) : destination_(std::move(des
   const fs::path parent = dest.has_parent_path() ? dest.parent_path() : fs::path(".");
   fs::create_directories(parent, ec);
   if (ec) throw OutputError(parent.string() + ": cannot create folder: " + ec.message());
-  staging_ = (parent / ("." + dest.filename().string() + ".staging-" + std::to_string(::getpid()))).string();
+  const std::string prefix = "." + dest.filename().string() + ".staging-";
+  // Staging folders left by bakes that were killed (their process is gone): never used again.
+  for (const auto& entry : fs::directory_iterator(parent, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+  }
+  staging_ = (parent / (prefix + std::to_string(::getpid()))).string();
   fs::remove_all(staging_, ec);
   if (!fs::create_directory(staging_, ec)) throw OutputError(staging_ + ": cannot create folder: " + ec.message());
 }

@@ -6,9 +6,11 @@ import json
 import math
 import os
 import shutil
-import struct
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bake_mesh import read_bake_mesh  # noqa: E402
 
 walkrad, source, work = sys.argv[1:4]
 scenes = os.path.join(os.path.dirname(os.path.abspath(source)), "shared/scenes/mgf")
@@ -30,14 +32,7 @@ for name in names:
     report = json.load(open(os.path.join(out, "report.json")))
     e = report["energy"]
     balance = sum(e["absorbed_w"]) / sum(e["emitted_w"])
-    values = []
-    for chunk in json.load(open(os.path.join(out, "manifest.json")))["chunks"]:
-        data = open(os.path.join(out, chunk["file"]), "rb").read()
-        json_len = struct.unpack_from("<I", data, 12)[0]
-        doc = json.loads(data[20:20 + json_len])
-        acc = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["_RADIOSITY"]]
-        view = doc["bufferViews"][acc["bufferView"]]
-        values += struct.unpack_from(f"<{3 * acc['count']}f", data, 20 + json_len + 8 + view.get("byteOffset", 0))
+    values = [c for b in read_bake_mesh(walkrad, out)[1] for c in b]
     finite = all(math.isfinite(v) and v >= 0 for v in values)
     print(f"{name}: {report['counts']['input_polygons']} polygons, {report['counts']['links']} links, "
           f"{report['total_seconds']:.1f} s, absorbed/emitted {balance:.3f}, radiosity finite: {finite}")

@@ -14,6 +14,7 @@ enum ExitCode : int {
   kExitMissingFeature = 4,  // valid input that uses something walkrad does not support
   kExitOutputFailure = 5,   // the output could not be written
   kExitLimitReached = 6,    // a size, count or time limit was reached
+  kExitDiffers = 7,         // `walkrad diff`: the bakes differ beyond the tolerance
 };
 
 // A refusal of an input file: names the file, the place in it (JSON pointer, line, accessor) and

@@ -1,7 +1,6 @@
-// From the hierarchy's solution to a displayable mesh: the leaves of every element quadtree become
-// triangles; a vertex's radiosity is the area-weighted average of the leaves of its input polygon
-// that share it (Gouraud, algorithms.md §8). Leaves of different depths meet at T-vertices: the
-// crack-free anchoring of a restricted quadtree is issue 5's work.
+// From the hierarchy's solution to a displayable mesh: the leaves of every element quadtree are the
+// faces of a crack-free Gouraud mesh (surface_mesher.h: T-vertices anchored, vertex radiosity averaged
+// over the leaves around each vertex, within a smoothing group).
 #pragma once
 
 #include "walkrad/formats/chunk.h"

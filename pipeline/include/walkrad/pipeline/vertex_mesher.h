@@ -1,6 +1,5 @@
-// From a solution on elements to a displayable mesh: vertex radiosity by area-weighted averaging of
-// the elements around each grid vertex (Gouraud, algorithms.md §8), per input polygon, so colours do
-// not bleed across a material boundary. Quads become two triangles.
+// From the classic method's elements to a displayable mesh: the elements are the faces of the
+// crack-free Gouraud mesh of surface_mesher.h. Also the vertex writer every mesher shares.
 #pragma once
 
 #include <vector>

@@ -1,0 +1,48 @@
+#include "walkrad/pipeline/bake_inspect.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "walkrad/formats/bake_folder.h"
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/manifest.h"
+
+namespace walkrad {
+
+void inspect_bake(const std::string& folder, const std::string& mesh_json) {
+  const Manifest m = read_manifest(folder + "/manifest.json");
+  uint64_t triangles = 0, bytes = 0;
+  for (const ChunkInfo& c : m.chunks) {
+    triangles += c.triangles;
+    bytes += c.bytes;
+  }
+  std::printf("%s: %s, scene %s (hash %s)\n", folder.c_str(), m.tool.c_str(), m.scene_file.c_str(), m.scene_hash.c_str());
+  std::printf("  %zu chunks, %llu triangles, %llu bytes, %s, exposure %.4g, %zu viewpoints\n", m.chunks.size(),
+              static_cast<unsigned long long>(triangles), static_cast<unsigned long long>(bytes),
+              m.settings.value("compress", false) ? "Draco" : "uncompressed", m.exposure, m.viewpoints.size());
+  for (const ChunkInfo& c : m.chunks) {
+    float seen = 0;
+    for (float f : c.importance) seen = std::max(seen, f);
+    std::printf("  %s: %llu triangles, %llu bytes, up to %.1f%% of a view\n", c.file.c_str(),
+                static_cast<unsigned long long>(c.triangles), static_cast<unsigned long long>(c.bytes), 100.0 * seen);
+  }
+  const std::string report_path = folder + "/report.json";
+  if (std::filesystem::exists(report_path)) {
+    std::ifstream in(report_path);
+    const nlohmann::json r = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (r.is_object() && r.contains("total_seconds") && r.contains("method"))
+      std::printf("  report: %s, %.2f s\n", r["method"].get<std::string>().c_str(), r["total_seconds"].get<double>());
+  }
+  if (mesh_json.empty()) return;
+  const ChunkMesh mesh = read_bake_mesh(folder);
+  const nlohmann::json j = {{"positions", mesh.positions}, {"normals", mesh.normals}, {"colors", mesh.colors},
+                            {"radiosity", mesh.radiosity}, {"indices", mesh.indices}};
+  std::ofstream out(mesh_json, std::ios::binary);
+  out << j.dump() << '\n';
+  if (!out) throw OutputError(mesh_json + ": cannot write");
+}
+
+}  // namespace walkrad
