@@ -10,14 +10,11 @@
 #include "walkrad/runtime/framebuffer.h"
 #include "walkrad/runtime/headless_context.h"
 #include "walkrad/runtime/player.h"
+#include "bake_dirs.h"
 
 namespace walkrad {
 namespace {
 
-std::string test_bake_dir() {
-  const char* env = std::getenv("WALKRAD_RUNTIME_TEST_BAKE");
-  return env && *env ? env : WALKRAD_RUNTIME_TEST_BAKE;
-}
 
 // Mean of (red − green) over the columns [first, last) of the image: positive where red dominates.
 double redness(const Image& image, int first, int last) {
@@ -28,7 +25,7 @@ double redness(const Image& image, int first, int last) {
 }
 
 TEST(BakeRender, CornellBoxShowsTheRedWallOnTheLeft) {
-  const std::string dir = test_bake_dir();
+  const std::string dir = test_bake_dir("WALKRAD_RUNTIME_TEST_BAKE", WALKRAD_RUNTIME_TEST_BAKE);
   if (!std::filesystem::exists(std::filesystem::path(dir) / "manifest.json"))
     GTEST_SKIP() << "no bake at " << dir << " (set WALKRAD_RUNTIME_TEST_BAKE to a Cornell box bake)";
 
