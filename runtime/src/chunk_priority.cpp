@@ -10,9 +10,8 @@ namespace walkrad {
 
 namespace {
 
-// Orders the chunks that no viewpoint ahead sees without outranking one that it does: an importance
-// is at least 1/1024 (one ray of the bake's 32² grid), weighed at least 1/(L + 1) L frames ahead,
-// so above 1e-7 for any lookahead under 9,000 frames.
+// Orders the chunks that no viewpoint ahead sees without outranking one that it does: those are
+// worth at least 1/(L + 1), above 1e-7 for any lookahead under 9,000,000 frames.
 constexpr double kDistanceWeight = 1e-7;
 // Off the path, chunks behind the camera still come, after those in front of it.
 constexpr double kOutsideFrustumWeight = 0.25;
@@ -65,7 +64,11 @@ std::vector<double> chunk_priorities(const Manifest& manifest, const CameraPlace
         if (!camera.loop) break;
         frame %= frames;
       }
-      ahead = std::max(ahead, importance_at(chunk, frame) * (1.0 - double(k) / double(lookahead + 1)));
+      const double importance = importance_at(chunk, frame);
+      if (importance > 0.0) {  // the first frame ahead that needs it
+        ahead = (double(lookahead + 1 - k) + 0.5 * std::min(importance, 1.0)) / double(lookahead + 1);
+        break;
+      }
     }
     priority[c] = ahead + kDistanceWeight * near;
   }

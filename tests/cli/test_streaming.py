@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Streaming along the authored path (issue 6): walkrad-view plays a bake's walkthrough headless at 30
-frames/s twice, with no budget and with a budget of half the bytes that every chunk takes resident.
+frames/s, with no budget and with a budget of a third of the bytes that every chunk takes resident.
 With the budget: every frame is byte-identical to the one drawn with everything resident (PNGs from
 one encoder are equal exactly when their pixels are), the resident bytes never exceed the budget,
-chunks were evicted (the budget binds), and no chunk was missed (prefetching brought every chunk
-before a frame needed it).
+chunks were evicted, and no chunk was missed (prefetching brought every chunk before a frame needed
+it). The same budget without looking ahead (--lookahead 0) does miss chunks: the budget binds, and
+it is the prefetch that keeps the path whole.
 
 Usage: test_streaming.py WALKRAD_VIEW BAKE_DIR WORK_DIR"""
 import json
@@ -30,11 +31,14 @@ failures = []
 if full["chunks_resident"] != full["chunks_total"] or full["chunks_total"] < 8:
     failures.append(f"no budget: {full['chunks_resident']} of {full['chunks_total']} chunks resident (want all, >= 8)")
 whole = full["resident_bytes"]  # every chunk resident
-budget_mb = whole / 2 / 1e6
-half_dir, half = play("half", "--budget-mb", f"{budget_mb:.6f}")
+budget_mb = whole / 3 / 1e6
+half_dir, half = play("third", "--budget-mb", f"{budget_mb:.6f}")
+_, blind = play("third-no-lookahead", "--budget-mb", f"{budget_mb:.6f}", "--lookahead", "0")
 
 if half["budget_bytes"] > whole / 2:
     failures.append(f"budget {half['budget_bytes']} B is more than half of {whole} B")
+if blind["chunk_misses"] == 0:
+    failures.append("without lookahead no chunk was missed either: the test does not show prefetching at work")
 if half["max_resident_bytes"] > half["budget_bytes"]:
     failures.append(f"resident bytes reached {half['max_resident_bytes']}, over the budget {half['budget_bytes']}")
 if half["chunk_evictions"] == 0:
@@ -52,7 +56,8 @@ if different:
     failures.append(f"{len(different)} frames differ from the fully resident ones: {', '.join(different[:5])}")
 
 print(f"whole bake resident: {whole} B; budget {half['budget_bytes']} B, max resident {half['max_resident_bytes']} B, "
-      f"{half['chunk_loads']} loads, {half['chunk_evictions']} evictions, {half['chunk_misses']} misses")
+      f"{half['chunk_loads']} loads, {half['chunk_evictions']} evictions, {half['chunk_misses']} misses "
+      f"({blind['chunk_misses']} without lookahead)")
 if failures:
     print("FAIL:\n  " + "\n  ".join(failures))
     sys.exit(1)

@@ -2,12 +2,15 @@
 // manifest alone (no GL, no files), so that the streaming policy can be tested on its own.
 //
 // On the walkthrough (the manifest's viewpoints, frame by frame), a chunk's importance for a
-// viewpoint is the fraction of that viewpoint's image it covers (manifest.h). The priority of chunk
-// c at frame i looks L frames ahead, nearer frames weighing more:
-//   p(c) = max over k = 0..L of importance[c][i + k] × (1 − k / (L + 1))  +  w_d / (1 + d(c))
-// where d(c) is the distance from the camera to the chunk's bounds and w_d = 1e-7 only orders the
-// chunks no viewpoint ahead sees (what a person leaving the path would meet first). Off the path
-// (free flight) there is no importance: p(c) = (in the view frustum ? 1 : 1/4) / (1 + d(c)).
+// viewpoint is the fraction of that viewpoint's image it covers (manifest.h). At frame i, looking L
+// frames ahead, let k be the first k = 0..L with importance[c][i + k] > 0: the chunk is needed k
+// frames from now, and the sooner the more useful (like Belady's rule for caches: what is needed
+// last is evicted first); among chunks needed at the same frame, the larger part of the image first:
+//   p(c) = (L + 1 − k + importance[c][i + k] / 2) / (L + 1)  +  w_d / (1 + d(c))
+// and p(c) = w_d / (1 + d(c)) when no frame ahead sees it, where d(c) is the distance from the camera
+// to the chunk's bounds and w_d = 1e-7 only orders those chunks (what a person leaving the path
+// would meet first). Off the path (free flight) there is no importance:
+//   p(c) = (in the view frustum ? 1 : 1/4) / (1 + d(c)).
 #pragma once
 
 #include <cstdint>
