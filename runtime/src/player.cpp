@@ -1,4 +1,4 @@
-// Player (player.h): manifest → chunk cache → renderer, with the timings of RenderStats.
+// Player (player.h): camera → priorities → chunk cache → renderer, with the timings of RenderStats.
 #include "walkrad/runtime/player.h"
 
 #include <filesystem>
@@ -17,31 +17,70 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Player Player::open(const std::string& bake_dir) {
+Player Player::open(const std::string& bake_dir, const StreamSettings& settings) {
   const Clock::time_point opened = Clock::now();
-  return Player(read_manifest((std::filesystem::path(bake_dir) / "manifest.json").string()), bake_dir, opened);
+  return Player(read_manifest((std::filesystem::path(bake_dir) / "manifest.json").string()), bake_dir, settings,
+                opened);
 }
 
-Player::Player(Manifest manifest, const std::string& bake_dir, Clock::time_point opened)
-    : manifest_(std::move(manifest)), chunks_(bake_dir, manifest_), opened_(opened) {
-  chunks_.load_all();
+Player::Player(Manifest manifest, const std::string& bake_dir, const StreamSettings& settings,
+               Clock::time_point opened)
+    : manifest_(std::move(manifest)),
+      settings_(settings),
+      chunks_(std::make_unique<ChunkCache>(bake_dir, manifest_, settings)),
+      opened_(opened) {
   stats_.open_ms = ms_since(opened_);
-  stats_.bytes_loaded = chunks_.bytes_loaded();
-  stats_.chunks_resident = chunks_.resident().size();
-  stats_.chunks_total = chunks_.chunk_count();
+  stats_.chunks_total = chunks_->chunk_count();
+  stats_.budget_bytes = chunks_->budget_bytes();
 }
 
-void Player::draw(const Viewpoint& view, int width, int height) {
+const RenderStats& Player::stats() {
+  stats_.bytes_loaded = chunks_->bytes_loaded();
+  stats_.chunk_loads = chunks_->loads();
+  stats_.chunk_evictions = chunks_->evictions();
+  stats_.chunks_resident = chunks_->resident_count();
+  stats_.resident_bytes = chunks_->resident_bytes();
+  stats_.max_resident_bytes = chunks_->max_resident_bytes();
+  return stats_;
+}
+
+void Player::update(const CameraPlace& camera) {
   const Clock::time_point start = Clock::now();
-  const Mat4 view_projection = walkrad::view_projection(view, manifest_.bounds, double(width) / double(height));
+  camera_ = camera;
+  priority_ = chunk_priorities(manifest_, camera_, settings_.lookahead_frames);
+  chunks_->update(priority_);
+  update_ms_ = ms_since(start);
+}
+
+void Player::draw(int width, int height, MissPolicy policy) {
+  const Clock::time_point start = Clock::now();
+  const bool first = stats_.frame_cpu_ms.empty();
+  const std::vector<uint32_t> needed = chunks_needed(manifest_, camera_);
+  uint64_t missing = 0;
+  for (uint32_t c : needed) missing += chunks_->mesh(c) == nullptr;
+  if (missing && !first) {
+    stats_.chunk_misses += missing;
+    ++stats_.frames_with_misses;
+  }
+  if (missing && (first || policy == MissPolicy::kWait)) chunks_->wait_for(needed, priority_);
+
+  const Mat4 view_projection = walkrad::view_projection(camera_.view, manifest_.bounds, double(width) / double(height));
   renderer_.begin_frame(width, height);
-  for (const GpuMesh& mesh : chunks_.resident()) renderer_.draw(mesh, view_projection);
-  stats_.frame_cpu_ms.push_back(ms_since(start));
-  if (stats_.frame_cpu_ms.size() == 1) {
+  // In chunk order whatever arrived when, so that a frame is the same as with every chunk resident.
+  for (uint32_t c = 0; c < chunks_->chunk_count(); ++c)
+    if (const GpuMesh* mesh = chunks_->mesh(c)) renderer_.draw(*mesh, view_projection);
+  stats_.frame_cpu_ms.push_back(update_ms_ + ms_since(start));
+  update_ms_ = 0;
+  if (first) {
     // Only the first frame waits for the GPU: "first frame" means on screen, not merely submitted.
     glFinish();
     stats_.time_to_first_frame_ms = ms_since(opened_);
   }
+}
+
+void Player::draw(const Viewpoint& view, int width, int height) {
+  update(CameraPlace{view, std::nullopt, false});
+  draw(width, height, MissPolicy::kWait);
 }
 
 }  // namespace walkrad

@@ -7,17 +7,15 @@
 
 #include <gtest/gtest.h>
 
+#include "walkrad/formats/error.h"
 #include "walkrad/runtime/framebuffer.h"
 #include "walkrad/runtime/headless_context.h"
 #include "walkrad/runtime/player.h"
+#include "bake_dirs.h"
 
 namespace walkrad {
 namespace {
 
-std::string test_bake_dir() {
-  const char* env = std::getenv("WALKRAD_RUNTIME_TEST_BAKE");
-  return env && *env ? env : WALKRAD_RUNTIME_TEST_BAKE;
-}
 
 // Mean of (red − green) over the columns [first, last) of the image: positive where red dominates.
 double redness(const Image& image, int first, int last) {
@@ -28,7 +26,7 @@ double redness(const Image& image, int first, int last) {
 }
 
 TEST(BakeRender, CornellBoxShowsTheRedWallOnTheLeft) {
-  const std::string dir = test_bake_dir();
+  const std::string dir = test_bake_dir("WALKRAD_RUNTIME_TEST_BAKE", WALKRAD_RUNTIME_TEST_BAKE);
   if (!std::filesystem::exists(std::filesystem::path(dir) / "manifest.json"))
     GTEST_SKIP() << "no bake at " << dir << " (set WALKRAD_RUNTIME_TEST_BAKE to a Cornell box bake)";
 
@@ -55,6 +53,29 @@ TEST(BakeRender, CornellBoxShowsTheRedWallOnTheLeft) {
   EXPECT_GT(stats.bytes_loaded, 0u);
   EXPECT_EQ(stats.frame_cpu_ms.size(), 1u);
   EXPECT_GE(stats.time_to_first_frame_ms, stats.open_ms);
+}
+
+// A chunk that cannot be read fails on a worker; the error reaches the render thread naming the file.
+TEST(BakeRender, AMissingChunkFileIsReportedByName) {
+  const std::string dir = test_bake_dir("WALKRAD_RUNTIME_TEST_BAKE", WALKRAD_RUNTIME_TEST_BAKE);
+  if (!std::filesystem::exists(std::filesystem::path(dir) / "manifest.json"))
+    GTEST_SKIP() << "no bake at " << dir;
+  const std::filesystem::path copy = std::filesystem::temp_directory_path() / "walkrad_runtime_missing_chunk";
+  std::filesystem::remove_all(copy);
+  std::filesystem::copy(dir, copy, std::filesystem::copy_options::recursive);
+  HeadlessContext context;
+  Player player = Player::open(copy.string());
+  const std::filesystem::path gone = copy / player.manifest().chunks.front().file;
+  std::filesystem::remove(gone);
+  Framebuffer target(8, 8);
+  target.bind();
+  try {
+    player.draw(player.manifest().viewpoints.front(), 8, 8);
+    ADD_FAILURE() << "no error for the missing " << gone;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), gone.string());
+  }
+  std::filesystem::remove_all(copy);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Image: an 8-bit RGBA picture read back from the GPU, top row first (the order of image files,
-// the reverse of OpenGL's), and its PNG writer. Headless frames and the tests go through it.
+// the reverse of OpenGL's), its PNG writer and reader, and the PSNR that golden tests compare with. Headless frames and the tests go through it.
 #pragma once
 
 #include <cstdint>
@@ -19,5 +19,12 @@ struct Image {
 
 // Writes the image as a PNG. Throws OutputError naming the file when it cannot be written.
 void write_png(const std::string& path, const Image& image);
+// Reads a PNG (any channel count, expanded to RGBA). Throws InputError naming the file.
+Image read_png(const std::string& path);
+
+// Peak signal-to-noise ratio of b against a over the RGB channels, in dB:
+// 10 log10(255² / mean squared difference); infinity when they are equal. Throws
+// std::invalid_argument when the sizes differ.
+double psnr(const Image& a, const Image& b);
 
 }  // namespace walkrad

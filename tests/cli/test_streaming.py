@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Streaming along the authored path (issue 6): walkrad-view plays a bake's walkthrough headless at 30
+frames/s, with no budget and with a budget of a third of the bytes that every chunk takes resident.
+With the budget: every frame is byte-identical to the one drawn with everything resident (PNGs from
+one encoder are equal exactly when their pixels are), the resident bytes never exceed the budget,
+chunks were evicted, and no chunk was missed (prefetching brought every chunk before a frame needed
+it). The same budget without looking ahead (--lookahead 0) does miss chunks: the budget binds, and
+it is the prefetch that keeps the path whole.
+
+Usage: test_streaming.py WALKRAD_VIEW BAKE_DIR WORK_DIR"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+view, bake, work = sys.argv[1:4]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+
+
+def play(name, *args):
+    frames = os.path.join(work, name)
+    subprocess.run([view, bake, "--frames", frames, "--height", "96", *args], check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(frames, "stats.json")) as f:
+        return frames, json.load(f)
+
+
+full_dir, full = play("full")
+failures = []
+if full["chunks_resident"] != full["chunks_total"] or full["chunks_total"] < 8:
+    failures.append(f"no budget: {full['chunks_resident']} of {full['chunks_total']} chunks resident (want all, >= 8)")
+whole = full["resident_bytes"]  # every chunk resident
+budget_mb = whole / 3 / 1e6
+half_dir, half = play("third", "--budget-mb", f"{budget_mb:.6f}")
+_, blind = play("third-no-lookahead", "--budget-mb", f"{budget_mb:.6f}", "--lookahead", "0")
+
+if half["budget_bytes"] > whole / 2:
+    failures.append(f"budget {half['budget_bytes']} B is more than half of {whole} B")
+if blind["chunk_misses"] == 0:
+    failures.append("without lookahead no chunk was missed either: the test does not show prefetching at work")
+if half["max_resident_bytes"] > half["budget_bytes"]:
+    failures.append(f"resident bytes reached {half['max_resident_bytes']}, over the budget {half['budget_bytes']}")
+if half["chunk_evictions"] == 0:
+    failures.append("nothing was evicted: the budget does not bind")
+if half["chunk_misses"] != 0:
+    failures.append(f"{half['chunk_misses']} chunk misses in {half['frames_with_misses']} frames along the path")
+if half["frames"] != full["frames"] or half["frames"] == 0:
+    failures.append(f"{half['frames']} frames with the budget, {full['frames']} without")
+different = []
+for name in sorted(n for n in os.listdir(full_dir) if n.endswith(".png")):
+    with open(os.path.join(full_dir, name), "rb") as a, open(os.path.join(half_dir, name), "rb") as b:
+        if a.read() != b.read():
+            different.append(name)
+if different:
+    failures.append(f"{len(different)} frames differ from the fully resident ones: {', '.join(different[:5])}")
+
+print(f"whole bake resident: {whole} B; budget {half['budget_bytes']} B, max resident {half['max_resident_bytes']} B, "
+      f"{half['chunk_loads']} loads, {half['chunk_evictions']} evictions, {half['chunk_misses']} misses "
+      f"({blind['chunk_misses']} without lookahead)")
+if failures:
+    print("FAIL:\n  " + "\n  ".join(failures))
+    sys.exit(1)
+print("ok")
