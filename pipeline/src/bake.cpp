@@ -218,12 +218,20 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.gauss_seidel = s.solver == "gauss-seidel";
   HierarchicalStats stats;
   const auto t0 = Clock::now();
+  auto round_start = t0;
+  uint64_t previous_new = 0;
   solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
+    const auto now = Clock::now();
+    const double left = refinement_seconds_left(previous_new, it.new_links, std::chrono::duration<double>(now - round_start).count());
+    previous_new = it.new_links;
+    round_start = now;
     if (!s.progress) return;
-    std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e, %.1f s\n",
+    char eta[48] = "remaining unknown";
+    if (left >= 0) std::snprintf(eta, sizeof eta, "about %.0f s left", left);
+    std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e, %.1f s, %s\n",
                  stats.iterations.size(), static_cast<unsigned long long>(it.links),
                  static_cast<unsigned long long>(it.new_links), static_cast<unsigned long long>(it.elements), it.change,
-                 std::chrono::duration<double>(Clock::now() - t0).count());
+                 std::chrono::duration<double>(now - t0).count(), eta);
   });
   for (const HNode& n : h->nodes())
     if (!is_finite(n.B)) throw std::runtime_error("the solution is not finite (please report this scene)");

@@ -23,4 +23,11 @@ void Progress::update(size_t done) {
   std::fprintf(stderr, "walkrad: %s %3.0f%% (%.1f s, ~%.1f s left)\n", phase_.c_str(), 100 * fraction, s, left);
 }
 
+double refinement_seconds_left(uint64_t previous_new_links, uint64_t last_new_links, double last_round_seconds) {
+  if (last_new_links == 0) return 0.0;
+  if (previous_new_links == 0 || last_new_links >= previous_new_links) return -1.0;
+  const double r = double(last_new_links) / double(previous_new_links);
+  return last_round_seconds * r / (1 - r);  // (seconds per link) × (links left)
+}
+
 }  // namespace walkrad

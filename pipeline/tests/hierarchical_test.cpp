@@ -18,6 +18,7 @@
 #include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/hierarchical_solver.h"
 #include "walkrad/pipeline/hierarchy.h"
+#include "walkrad/pipeline/progress.h"
 
 namespace walkrad {
 namespace {
@@ -164,6 +165,20 @@ TEST_F(CornellHierarchical, OutputHasNoTJunctions) {
     const ChunkMesh mesh = read_bake_mesh((dir_ / name).string());
     EXPECT_EQ(test::count_t_junctions(mesh, 1e-7), 0u) << name;  // float32 positions: ~3e-8 m off
   }
+}
+
+}  // namespace
+}  // namespace walkrad
+
+namespace walkrad {
+namespace {
+
+// The progress line's estimate: halving waves leave as many links as the last round added.
+TEST(RefinementProgress, EstimatesTimeLeftFromTheShrinkingWave) {
+  EXPECT_NEAR(refinement_seconds_left(100, 50, 2.0), 2.0, 1e-12);
+  EXPECT_NEAR(refinement_seconds_left(100, 10, 9.0), 1.0, 1e-12);
+  EXPECT_LT(refinement_seconds_left(50, 100, 2.0), 0.0);  // still growing: unknown
+  EXPECT_EQ(refinement_seconds_left(100, 0, 2.0), 0.0);   // nothing added: done
 }
 
 }  // namespace

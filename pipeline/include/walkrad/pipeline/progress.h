@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -25,5 +26,10 @@ class Progress {
   std::atomic<int64_t> last_print_ms_{0};
   std::mutex print_;
 };
+
+// Time left in hierarchical refinement, estimated from its last two rounds: past its peak, the wave of
+// new links shrinks about geometrically (ratio r = last / previous), so the rounds left add about
+// last · r / (1 − r) links, at the last round's cost per link. Negative while still growing (unknown).
+double refinement_seconds_left(uint64_t previous_new_links, uint64_t last_new_links, double last_round_seconds);
 
 }  // namespace walkrad
