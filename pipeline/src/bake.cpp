@@ -328,7 +328,10 @@ BakeSummary bake(const BakeSettings& s) {
                               s.radiosity_tolerance * kPi / exposure);
   }
   uint64_t chunk_rays = 0;
-  const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), 32, chunk_rays);
+  // Fine enough that a sliver of a chunk seen through a doorway is not missed (a runtime would leave it
+  // unloaded): up to 128² rays a view, about 4 million rays in all for long walkthroughs.
+  const int chunk_grid = std::clamp(int(std::sqrt(4.0e6 / double(std::max<size_t>(views.size(), 1)))), 32, 128);
+  const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), chunk_grid, chunk_rays);
 
   phases.start("write");
   Manifest manifest;

@@ -16,8 +16,14 @@ constexpr double kDistanceWeight = 1e-7;
 // Off the path, chunks behind the camera still come, after those in front of it.
 constexpr double kOutsideFrustumWeight = 0.25;
 
+// A chunk's importance at a frame, widened to the frames just before and after: the bake samples each
+// viewpoint with a finite grid of rays, which can miss a sliver of a chunk (seen through a doorway at a
+// grazing angle) that the rasteriser still draws; the neighbouring frames almost always catch it.
 double importance_at(const ChunkInfo& chunk, size_t frame) {
-  return frame < chunk.importance.size() ? double(chunk.importance[frame]) : 0.0;
+  double most = 0.0;
+  for (size_t f = frame == 0 ? 0 : frame - 1; f <= frame + 1; ++f)
+    if (f < chunk.importance.size()) most = std::max(most, double(chunk.importance[f]));
+  return most;
 }
 
 }  // namespace

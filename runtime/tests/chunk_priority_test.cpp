@@ -52,10 +52,11 @@ Manifest test_manifest() {
 TEST(ChunkPriority, SoonestNeededFirstThenTheLargerPartOfTheImage) {
   const Manifest m = test_manifest();
   const std::vector<double> p = chunk_priorities(m, {m.viewpoints[0], size_t(0), false}, 3);
-  // L = 3: (4 − k + importance / 2) / 4.
+  // L = 3: (4 − k + importance / 2) / 4, importance widened to the frames beside: chunks 1 and 2,
+  // seen at frame 2, count from frame 1 (k = 1).
   EXPECT_NEAR(p[0], (4 + 0.05) / 4, 1e-6);
-  EXPECT_NEAR(p[1], (2 + 0.15) / 4, 1e-6);
-  EXPECT_NEAR(p[2], (2 + 0.3) / 4, 1e-6);
+  EXPECT_NEAR(p[1], (3 + 0.15) / 4, 1e-6);
+  EXPECT_NEAR(p[2], (3 + 0.3) / 4, 1e-6);
   EXPECT_GT(p[0], p[2]);  // needed now, however little of the image it covers
   EXPECT_GT(p[2], p[1]);
   // Chunks no frame ahead sees come after every seen one, the nearer first.
@@ -66,8 +67,8 @@ TEST(ChunkPriority, SoonestNeededFirstThenTheLargerPartOfTheImage) {
 
 TEST(ChunkPriority, LookaheadLimitsTheFramesConsidered) {
   const Manifest m = test_manifest();
-  const std::vector<double> p = chunk_priorities(m, {m.viewpoints[0], size_t(0), false}, 1);
-  EXPECT_LT(p[1], 1e-6);  // seen 2 frames ahead, beyond the lookahead
+  const std::vector<double> p = chunk_priorities(m, {m.viewpoints[0], size_t(0), false}, 0);
+  EXPECT_LT(p[1], 1e-6);  // seen 2 frames ahead: beyond the lookahead and the frame beside
   EXPECT_LT(p[2], 1e-6);
   EXPECT_GT(p[0], 1.0);
 }
@@ -88,10 +89,11 @@ TEST(ChunkPriority, OffThePathTheFrustumAndDistanceDecide) {
   EXPECT_GT(p[3], p[4]);  // in front (7.5 m) before behind (4.5 m)
 }
 
-TEST(ChunkPriority, NeededOnThePathIsWhatTheViewpointSees) {
+TEST(ChunkPriority, NeededOnThePathIsWhatTheViewpointAndItsNeighboursSee) {
   const Manifest m = test_manifest();
   EXPECT_EQ(chunks_needed(m, {m.viewpoints[0], size_t(0), false}), (std::vector<uint32_t>{0}));
-  EXPECT_EQ(chunks_needed(m, {m.viewpoints[2], size_t(2), false}), (std::vector<uint32_t>{1, 2}));
+  EXPECT_EQ(chunks_needed(m, {m.viewpoints[2], size_t(2), false}), (std::vector<uint32_t>{0, 1, 2}));  // 0: frame 1
+  EXPECT_EQ(chunks_needed(m, {m.viewpoints[3], size_t(3), false}), (std::vector<uint32_t>{1, 2}));     // 1: frame 2
   // Off the path: what the frustum holds, whatever the importance says.
   EXPECT_EQ(chunks_needed(m, {m.viewpoints[0], std::nullopt, false}), (std::vector<uint32_t>{0, 1, 2, 3}));
 }

@@ -2,7 +2,8 @@
 // manifest alone (no GL, no files), so that the streaming policy can be tested on its own.
 //
 // On the walkthrough (the manifest's viewpoints, frame by frame), a chunk's importance for a
-// viewpoint is the fraction of that viewpoint's image it covers (manifest.h). At frame i, looking L
+// viewpoint is the fraction of that viewpoint's image it covers (manifest.h), here widened to the
+// largest over the frames just before and after (the bake's ray grid can miss a sliver). At frame i, looking L
 // frames ahead, let k be the first k = 0..L with importance[c][i + k] > 0: the chunk is needed k
 // frames from now, and the sooner the more useful (like Belady's rule for caches: what is needed
 // last is evicted first); among chunks needed at the same frame, the larger part of the image first:
@@ -30,8 +31,8 @@ struct CameraPlace {
 // One priority per manifest chunk, larger first (see above). lookahead = L in frames.
 std::vector<double> chunk_priorities(const Manifest& manifest, const CameraPlace& camera, size_t lookahead);
 
-// The chunks a frame cannot do without: on the path, those the current viewpoint sees (importance
-// > 0); off it, those whose bounds meet the view frustum. Ascending chunk order.
+// The chunks a frame cannot do without: on the path, those the current viewpoint or its neighbours
+// see (widened importance > 0); off it, those whose bounds meet the view frustum. Ascending chunk order.
 std::vector<uint32_t> chunks_needed(const Manifest& manifest, const CameraPlace& camera);
 
 // Distance from a point to an axis-aligned box (0 inside).
