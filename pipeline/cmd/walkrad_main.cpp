@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -42,6 +43,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   bake_cmd->add_option("--chunk-triangles", bs.chunk_triangles, "largest streaming chunk, in triangles")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
+  std::vector<std::string> effect_overrides;
+  bake_cmd->add_option("--effect", effect_overrides,
+                       "force an effect on or off: indirect|visibility|importance|clusters=on|off (repeatable)");
+  bake_cmd->add_flag("--explain", bs.explain, "print the effect plan (what is simulated, and why) before solving");
   bool no_compression = false;
   bake_cmd->add_flag("--no-compression", no_compression, "write plain glTF chunks (default: Draco)");
   bake_cmd->add_option("--position-tolerance", bs.position_tolerance,
@@ -96,6 +101,11 @@ int main(int argc, char** argv) {
     if (bake_cmd->parsed()) {
       bs.progress = !quiet;
       bs.compress = !no_compression;
+      for (const std::string& e : effect_overrides) {
+        const size_t eq = e.find('=');
+        if (eq == std::string::npos) throw InputError("--effect", e, "expected NAME=on or NAME=off", kExitBadArguments);
+        bs.effects[e.substr(0, eq)] = e.substr(eq + 1);
+      }
       if (bs.output.empty()) {
         std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
         bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
