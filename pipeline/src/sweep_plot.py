@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Plots and report.md for a `walkrad sweep` folder (written there by the sweep, which runs it; run it
+again by hand with: python3 plot_sweep.py SWEEP_DIR). Needs python3-matplotlib (Debian)."""
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+folder = sys.argv[1] if len(sys.argv) > 1 else "."
+doc = json.load(open(os.path.join(folder, "sweep.json")))
+runs = doc["runs"]
+ref = doc["reference"]
+LABELS = {"classic": "classic (element size)", "hierarchical": "hierarchical, view-independent (ε)",
+          "importance": "hierarchical, importance-driven (ε)"}
+STYLE = {"classic": ("tab:gray", "s"), "hierarchical": ("tab:blue", "o"), "importance": ("tab:red", "^")}
+methods = [m for m in ["classic", "hierarchical", "importance"] if any(r["method"] == m for r in runs)]
+
+
+def of(method):
+    return [r for r in runs if r["method"] == method]
+
+
+def pct(x):
+    return 100.0 * x
+
+
+# Error against time, log-log, one curve per method; the reference's own 95% error bar as a band.
+fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+for ax, key, ci, title in [(axes[0], "rms_weighted", ref["ci"]["rms_weighted"], "at the sample points (importance-weighted)"),
+                           (axes[1], "image_rms_weighted", ref["image_ci"]["rms_weighted"], "in the images from the viewpoints")]:
+    for m in methods:
+        rs = sorted(of(m), key=lambda r: r["seconds"])
+        colour, marker = STYLE[m]
+        ax.plot([r["seconds"] for r in rs], [pct(r[key]) for r in rs], marker=marker, color=colour, label=LABELS[m])
+        for r in rs:
+            tag = f"{r['epsilon']:g}" if r["epsilon"] is not None else f"{r['element_size']:.3g} m"
+            ax.annotate(tag, (r["seconds"], pct(r[key])), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.axhspan(1e-3, pct(ci), color="tab:green", alpha=0.15, label="reference's 95% error bar")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("bake time (s, wall)")
+    ax.set_ylabel("relative RMS error of B (%)")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    values = [pct(r[key]) for r in runs if r[key] > 0] + [pct(ci)]
+    ax.set_ylim(min(values) / 1.5, max(values) * 1.5)
+axes[0].legend(fontsize=8)
+fig.suptitle(os.path.basename(doc["scene"]) + ": error against time", fontsize=11)
+fig.tight_layout()
+fig.savefig(os.path.join(folder, "error_vs_time.png"), dpi=90)
+
+# Links and memory against ε (hierarchical methods) and against element size (classic).
+fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axes[1], "peak_rss_mib", "peak memory (MiB)")]:
+    for m in methods:
+        if m == "classic":
+            continue
+        rs = sorted(of(m), key=lambda r: r["epsilon"])
+        colour, marker = STYLE[m]
+        ax.plot([r["epsilon"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS[m])
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.invert_xaxis()
+    ax.set_xlabel("ε (smaller: finer)")
+    ax.set_ylabel(label)
+    ax.grid(True, which="both", alpha=0.3)
+    if "classic" in methods:
+        top = ax.twiny()
+        rs = sorted(of("classic"), key=lambda r: -r["element_size"])
+        colour, marker = STYLE["classic"]
+        top.plot([r["element_size"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS["classic"])
+        top.set_xscale("log")
+        top.invert_xaxis()
+        top.set_xlabel("classic: element size (m)", color=colour)
+        top.legend(fontsize=8, loc="lower right")
+axes[0].legend(fontsize=8, loc="upper left")
+fig.suptitle(os.path.basename(doc["scene"]) + ": links and memory", fontsize=11)
+fig.tight_layout()
+fig.savefig(os.path.join(folder, "cost_vs_epsilon.png"), dpi=90)
+
+
+def fastest_within(method, key, error):
+    """The fastest run of `method` whose error is at most `error` (None if none is)."""
+    rs = [r for r in of(method) if r[key] <= error]
+    return min(rs, key=lambda r: r["seconds"]) if rs else None
+
+
+lines = [f"# Accuracy sweep: {os.path.basename(doc['scene'])}", "",
+         f"Command: `{doc['command']}`", "",
+         f"Scene: {doc['input_polygons']} input polygons; walkthrough: {doc['viewpoints']} viewpoints.", "",
+         f"Reference (Monte Carlo path tracer, diffuse, next-event estimation): {ref['points']} rays over "
+         f"{ref['views']} viewpoints, {ref['measured_points']} on non-emitting surfaces, {ref['samples']} paths each, "
+         f"{ref['seconds']:.1f} s; 95% error bar (relative RMS of 1.96σ): {pct(ref['ci']['rms']):.2f}% plain, "
+         f"{pct(ref['ci']['rms_weighted']):.2f}% weighted. Images: {ref['image_samples']} paths per pixel, error bar "
+         f"{pct(ref['image_ci']['rms']):.2f}%.", ""]
+if doc.get("unavailable"):
+    lines += ["Not measured: " + "; ".join(doc["unavailable"]) + ".", ""]
+lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | output KiB | RMS | RMS (w) | max | max (w) | image RMS | absorbed/emitted |",
+          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+for r in runs:
+    lines.append(f"| {r['name']} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['elements']} | {r['links']} | {r['rays']} | "
+                 f"{r['peak_rss_mib']:.0f} | {r['output_bytes'] / 1024:.0f} | {pct(r['rms']):.2f}% | {pct(r['rms_weighted']):.2f}% | "
+                 f"{pct(r['max']):.1f}% | {pct(r['max_weighted']):.1f}% | {pct(r['image_rms_weighted']):.2f}% | "
+                 f"{r['absorbed_over_emitted']:.3f} |")
+lines += ["", "![error against time](error_vs_time.png)", "", "![links and memory](cost_vs_epsilon.png)", ""]
+if "importance" in methods and "hierarchical" in methods:
+    lines += ["Equal error (importance-weighted RMS at the sample points): for each importance-driven run, the fastest "
+              "view-independent run with at most its error.", "",
+              "| importance run | its error | its time (s) | fastest view-independent run at ≤ that error | time (s) | time ratio |",
+              "| --- | ---: | ---: | --- | ---: | ---: |"]
+    for r in sorted(of("importance"), key=lambda r: r["seconds"]):
+        v = fastest_within("hierarchical", "rms_weighted", r["rms_weighted"])
+        if v is None:
+            lines.append(f"| {r['name']} | {pct(r['rms_weighted']):.2f}% | {r['seconds']:.2f} | none reaches it | | > "
+                         f"{max(x['seconds'] for x in of('hierarchical')) / r['seconds']:.2f} |")
+        else:
+            lines.append(f"| {r['name']} | {pct(r['rms_weighted']):.2f}% | {r['seconds']:.2f} | {v['name']} | {v['seconds']:.2f} | "
+                         f"{v['seconds'] / r['seconds']:.2f} |")
+    lines.append("")
+for im in ref["images"]:
+    lines += [f"![reference, viewpoint {im['view']}]({im['file']})"]
+open(os.path.join(folder, "report.md"), "w").write("\n".join(lines) + "\n")
