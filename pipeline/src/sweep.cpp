@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -160,8 +161,11 @@ uint64_t folder_bytes(const std::string& dir) {
   return bytes;
 }
 
+json or_null(size_t points, double value) { return points ? json(value) : json(nullptr); }
+
 json error_json(const ErrorMeasures& e) {
-  return {{"rms", e.rms}, {"rms_weighted", e.rms_weighted}, {"max", e.max}, {"max_weighted", e.max_weighted}, {"points", e.points}};
+  return {{"rms", or_null(e.points, e.rms)}, {"rms_weighted", or_null(e.points, e.rms_weighted)},
+          {"max", or_null(e.points, e.max)}, {"max_weighted", or_null(e.points, e.max_weighted)}, {"points", e.points}};
 }
 
 // One row of sweep.csv per run, from the run's JSON record.
@@ -294,16 +298,16 @@ SweepSummary run_sweep(const SweepSettings& s) {
                 {"rays", counts.value("visibility_rays", uint64_t(0))}, {"triangles", counts.value("triangles", uint64_t(0))},
                 {"peak_rss_mib", p.peak_rss_mib}, {"output_bytes", folder_bytes(dir)},
                 {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted}, {"max", e.max},
-                {"max_weighted", e.max_weighted}, {"image_pixels", ie.points}, {"image_rms", ie.rms},
-                {"image_rms_weighted", ie.rms_weighted}, {"reference_ci_rms", ci.rms},
-                {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", image_ci.rms},
+                {"max_weighted", e.max_weighted}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
+                {"image_rms_weighted", or_null(ie.points, ie.rms_weighted)}, {"reference_ci_rms", ci.rms},
+                {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", or_null(image_ci.points, image_ci.rms)},
                 {"absorbed_over_emitted", sum3(report.at("energy").at("absorbed_w")) / sum3(report.at("energy").at("emitted_w"))},
                 {"counts", counts}};
     records.push_back(rec);
     char line[256];
     std::snprintf(line, sizeof line, "%s: %.2f s, %.0f MiB, %s links, error %.2f%% (weighted %.2f%%, image %.2f%%)",
                   run.name.c_str(), p.wall_seconds, p.peak_rss_mib, rec["links"].dump().c_str(), 100 * e.rms,
-                  100 * e.rms_weighted, 100 * ie.rms);
+                  100 * e.rms_weighted, 100 * ie.rms_weighted);
     log(line);
     if (!s.keep_bakes) fs::remove_all(dir);
   }
@@ -327,7 +331,9 @@ SweepSummary run_sweep(const SweepSettings& s) {
   summary.reference_seconds = points.seconds + image.seconds;
   write_text(out.path("plot_sweep.py"), kSweepPlotScript);
   if (s.plots) {
-    const ProcessRun p = run_process("python3", {out.path("plot_sweep.py"), out.path("")}, out.path("plot.log"));
+    // Debian's python3-matplotlib is installed for the system interpreter, which a PATH may shadow.
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const ProcessRun p = run_process(python, {out.path("plot_sweep.py"), out.path("")}, out.path("plot.log"));
     summary.plotted = p.exit_code == 0;
     if (!summary.plotted)
       std::fprintf(stderr, "walkrad: warning: plots and report.md not written (python3 with matplotlib is needed: %s)\n",

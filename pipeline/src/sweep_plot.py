@@ -10,6 +10,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 
 folder = sys.argv[1] if len(sys.argv) > 1 else "."
 doc = json.load(open(os.path.join(folder, "sweep.json")))
@@ -29,10 +30,22 @@ def pct(x):
     return 100.0 * x
 
 
+def percent(x):
+    return "" if x is None else f"{100.0 * x:.2f}%"
+
+
+def plain_numbers(axis):
+    axis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}" if f"{v:.1g}"[0] in "235" else ""))
+
+
 # Error against time, log-log, one curve per method; the reference's own 95% error bar as a band.
-fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-for ax, key, ci, title in [(axes[0], "rms_weighted", ref["ci"]["rms_weighted"], "at the sample points (importance-weighted)"),
-                           (axes[1], "image_rms_weighted", ref["image_ci"]["rms_weighted"], "in the images from the viewpoints")]:
+panels = [("rms_weighted", ref["ci"]["rms_weighted"], "at the sample points (importance-weighted)")]
+if ref["images"]:
+    panels.append(("image_rms_weighted", ref["image_ci"]["rms_weighted"], "in the images from the viewpoints"))
+fig, axes = plt.subplots(1, len(panels), figsize=(5.5 * len(panels), 4.2), squeeze=False)
+axes = axes[0]
+for ax, (key, ci, title) in zip(axes, panels):
     for m in methods:
         rs = sorted(of(m), key=lambda r: r["seconds"])
         colour, marker = STYLE[m]
@@ -49,6 +62,8 @@ for ax, key, ci, title in [(axes[0], "rms_weighted", ref["ci"]["rms_weighted"], 
     ax.grid(True, which="both", alpha=0.3)
     values = [pct(r[key]) for r in runs if r[key] > 0] + [pct(ci)]
     ax.set_ylim(min(values) / 1.5, max(values) * 1.5)
+    plain_numbers(ax.yaxis)
+    plain_numbers(ax.xaxis)
 axes[0].legend(fontsize=8)
 fig.suptitle(os.path.basename(doc["scene"]) + ": error against time", fontsize=11)
 fig.tight_layout()
@@ -69,6 +84,8 @@ for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axe
     ax.set_xlabel("ε (smaller: finer)")
     ax.set_ylabel(label)
     ax.grid(True, which="both", alpha=0.3)
+    if key == "peak_rss_mib":
+        plain_numbers(ax.yaxis)
     if "classic" in methods:
         top = ax.twiny()
         rs = sorted(of("classic"), key=lambda r: -r["element_size"])
@@ -97,7 +114,7 @@ lines = [f"# Accuracy sweep: {os.path.basename(doc['scene'])}", "",
          f"{ref['views']} viewpoints, {ref['measured_points']} on non-emitting surfaces, {ref['samples']} paths each, "
          f"{ref['seconds']:.1f} s; 95% error bar (relative RMS of 1.96σ): {pct(ref['ci']['rms']):.2f}% plain, "
          f"{pct(ref['ci']['rms_weighted']):.2f}% weighted. Images: {ref['image_samples']} paths per pixel, error bar "
-         f"{pct(ref['image_ci']['rms']):.2f}%.", ""]
+         f"{percent(ref['image_ci']['rms'])}.", ""]
 if doc.get("unavailable"):
     lines += ["Not measured: " + "; ".join(doc["unavailable"]) + ".", ""]
 lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | output KiB | RMS | RMS (w) | max | max (w) | image RMS | absorbed/emitted |",
@@ -105,7 +122,7 @@ lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | out
 for r in runs:
     lines.append(f"| {r['name']} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['elements']} | {r['links']} | {r['rays']} | "
                  f"{r['peak_rss_mib']:.0f} | {r['output_bytes'] / 1024:.0f} | {pct(r['rms']):.2f}% | {pct(r['rms_weighted']):.2f}% | "
-                 f"{pct(r['max']):.1f}% | {pct(r['max_weighted']):.1f}% | {pct(r['image_rms_weighted']):.2f}% | "
+                 f"{pct(r['max']):.1f}% | {pct(r['max_weighted']):.1f}% | {percent(r['image_rms_weighted'])} | "
                  f"{r['absorbed_over_emitted']:.3f} |")
 lines += ["", "![error against time](error_vs_time.png)", "", "![links and memory](cost_vs_epsilon.png)", ""]
 if "importance" in methods and "hierarchical" in methods:
