@@ -12,7 +12,7 @@ double weight(const std::vector<double>& w, size_t i) { return w.empty() ? 1.0 :
 // The measures of per-point differences d against reference values r (NaN in either: skipped).
 ErrorMeasures measure(const std::vector<double>& d, const std::vector<double>& r, const std::vector<double>& w) {
   ErrorMeasures m;
-  double d2 = 0, r2 = 0, wd2 = 0, wr2 = 0, rsum = 0, wsum = 0, wrsum = 0, dmax = 0;
+  double d2 = 0, r2 = 0, wd2 = 0, wr2 = 0, rsum = 0, wsum = 0, wrsum = 0, wdsum = 0, dmax = 0;
   for (size_t i = 0; i < r.size(); ++i) {
     if (std::isnan(d[i]) || std::isnan(r[i])) continue;
     const double wi = weight(w, i);
@@ -24,6 +24,7 @@ ErrorMeasures measure(const std::vector<double>& d, const std::vector<double>& r
     rsum += r[i];
     wsum += wi;
     wrsum += wi * r[i];
+    wdsum += wi * d[i];
     dmax = std::max(dmax, std::fabs(d[i]));
   }
   if (m.points == 0) return m;
@@ -35,6 +36,7 @@ ErrorMeasures measure(const std::vector<double>& d, const std::vector<double>& r
   m.rms_weighted = wr2 > 0 ? std::sqrt(wd2 / wr2) : 0;
   m.max = rsum > 0 ? dmax / (rsum / double(m.points)) : 0;
   m.max_weighted = wrsum > 0 ? wdmax / (wrsum / wsum) : 0;
+  m.bias = wrsum > 0 ? wdsum / wrsum : 0;
   return m;
 }
 

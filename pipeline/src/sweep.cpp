@@ -161,6 +161,22 @@ uint64_t folder_bytes(const std::string& dir) {
   return bytes;
 }
 
+// Where the bake is furthest from the reference (for the reader who wants to look): the sample point
+// with the largest |a − r|, its position, both values and the reference's standard error.
+json worst_point(const ReferenceSet& ref, const std::vector<double>& bake) {
+  size_t worst = ref.rays.size();
+  double largest = -1;
+  for (size_t k = 0; k < bake.size(); ++k)
+    if (!std::isnan(bake[k]) && !std::isnan(ref.luminance[k]) && std::fabs(bake[k] - ref.luminance[k]) > largest) {
+      largest = std::fabs(bake[k] - ref.luminance[k]);
+      worst = k;
+    }
+  if (worst == ref.rays.size()) return nullptr;
+  const Vec3 p = ref.rays[worst].origin + ref.rays[worst].direction * ref.distance[worst];
+  return {{"view", ref.rays[worst].view}, {"position", {p.x, p.y, p.z}}, {"reference", ref.luminance[worst]},
+          {"standard_error", ref.standard_error[worst]}, {"bake", bake[worst]}};
+}
+
 json or_null(size_t points, double value) { return points ? json(value) : json(nullptr); }
 
 json error_json(const ErrorMeasures& e) {
@@ -171,7 +187,7 @@ json error_json(const ErrorMeasures& e) {
 // One row of sweep.csv per run, from the run's JSON record.
 const char* const kColumns[] = {"method", "epsilon", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays",
                                 "triangles", "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max",
-                                "max_weighted", "image_pixels", "image_rms", "image_rms_weighted", "reference_ci_rms",
+                                "max_weighted", "bias", "image_pixels", "image_rms", "image_rms_weighted", "reference_ci_rms",
                                 "reference_ci_rms_weighted", "reference_image_ci_rms", "absorbed_over_emitted"};
 
 void write_csv(const std::string& path, const json& runs) {
@@ -285,7 +301,8 @@ SweepSummary run_sweep(const SweepSettings& s) {
     const json report = json::parse(report_file);
     const json& counts = report.at("counts");
     const BakeSampler bake = BakeSampler::open(dir);
-    const ErrorMeasures e = relative_errors(sample_bake(bake, points, tolerance), points.luminance, points.weight);
+    const std::vector<double> at_points = sample_bake(bake, points, tolerance);
+    const ErrorMeasures e = relative_errors(at_points, points.luminance, points.weight);
     const ErrorMeasures ie = relative_errors(sample_bake(bake, image, tolerance), image.luminance, image.weight);
     json phases = json::object();
     for (const json& ph : report.at("phases")) phases[ph.at("name").get<std::string>()] = ph.at("seconds");
@@ -298,11 +315,11 @@ SweepSummary run_sweep(const SweepSettings& s) {
                 {"rays", counts.value("visibility_rays", uint64_t(0))}, {"triangles", counts.value("triangles", uint64_t(0))},
                 {"peak_rss_mib", p.peak_rss_mib}, {"output_bytes", folder_bytes(dir)},
                 {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted}, {"max", e.max},
-                {"max_weighted", e.max_weighted}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
+                {"max_weighted", e.max_weighted}, {"bias", e.bias}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
                 {"image_rms_weighted", or_null(ie.points, ie.rms_weighted)}, {"reference_ci_rms", ci.rms},
                 {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", or_null(image_ci.points, image_ci.rms)},
                 {"absorbed_over_emitted", sum3(report.at("energy").at("absorbed_w")) / sum3(report.at("energy").at("emitted_w"))},
-                {"counts", counts}};
+                {"worst_point", worst_point(points, at_points)}, {"counts", counts}};
     records.push_back(rec);
     char line[256];
     std::snprintf(line, sizeof line, "%s: %.2f s, %.0f MiB, %s links, error %.2f%% (weighted %.2f%%, image %.2f%%)",

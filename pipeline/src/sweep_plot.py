@@ -30,6 +30,10 @@ def pct(x):
     return 100.0 * x
 
 
+def bias(r):
+    return "" if r.get("bias") is None else f"{100.0 * r['bias']:+.1f}%"
+
+
 def percent(x):
     return "" if x is None else f"{100.0 * x:.2f}%"
 
@@ -47,16 +51,16 @@ fig, axes = plt.subplots(1, len(panels), figsize=(5.5 * len(panels), 4.2), squee
 axes = axes[0]
 for ax, (key, ci, title) in zip(axes, panels):
     for m in methods:
-        rs = sorted(of(m), key=lambda r: r["seconds"])
+        rs = sorted(of(m), key=lambda r: r["cpu_seconds"])
         colour, marker = STYLE[m]
-        ax.plot([r["seconds"] for r in rs], [pct(r[key]) for r in rs], marker=marker, color=colour, label=LABELS[m])
+        ax.plot([r["cpu_seconds"] for r in rs], [pct(r[key]) for r in rs], marker=marker, color=colour, label=LABELS[m])
         for r in rs:
             tag = f"{r['epsilon']:g}" if r["epsilon"] is not None else f"{r['element_size']:.3g} m"
-            ax.annotate(tag, (r["seconds"], pct(r[key])), fontsize=7, xytext=(3, 3), textcoords="offset points")
+            ax.annotate(tag, (r["cpu_seconds"], pct(r[key])), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.axhspan(1e-3, pct(ci), color="tab:green", alpha=0.15, label="reference's 95% error bar")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("bake time (s, wall)")
+    ax.set_xlabel("bake time (CPU s: user + system; steadier than wall time on a shared machine)", fontsize=8)
     ax.set_ylabel("relative RMS error of B (%)")
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
@@ -93,6 +97,7 @@ for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axe
         top.plot([r["element_size"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS["classic"])
         top.set_xscale("log")
         top.invert_xaxis()
+        plain_numbers(top.xaxis)
         top.set_xlabel("classic: element size (m)", color=colour)
         top.legend(fontsize=8, loc="lower right")
 axes[0].legend(fontsize=8, loc="upper left")
@@ -101,10 +106,15 @@ fig.tight_layout()
 fig.savefig(os.path.join(folder, "cost_vs_epsilon.png"), dpi=90)
 
 
-def fastest_within(method, key, error):
-    """The fastest run of `method` whose error is at most `error` (None if none is)."""
-    rs = [r for r in of(method) if r[key] <= error]
-    return min(rs, key=lambda r: r["seconds"]) if rs else None
+def time_at(method, key, error, clock):
+    """The time `method` needs for `error`: log-log interpolation between its two runs (by ε) whose errors
+    bracket it; None when no two runs do."""
+    rs = sorted(of(method), key=lambda r: -r["epsilon"])
+    for a, b in zip(rs, rs[1:]):
+        if min(a[key], b[key]) <= error <= max(a[key], b[key]) and a[key] != b[key]:
+            f = math.log(error / a[key]) / math.log(b[key] / a[key])
+            return math.exp(math.log(a[clock]) + f * math.log(b[clock] / a[clock]))
+    return None
 
 
 lines = [f"# Accuracy sweep: {os.path.basename(doc['scene'])}", "",
@@ -117,27 +127,30 @@ lines = [f"# Accuracy sweep: {os.path.basename(doc['scene'])}", "",
          f"{percent(ref['image_ci']['rms'])}.", ""]
 if doc.get("unavailable"):
     lines += ["Not measured: " + "; ".join(doc["unavailable"]) + ".", ""]
-lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | output KiB | RMS | RMS (w) | max | max (w) | image RMS | absorbed/emitted |",
-          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | output KiB | RMS | RMS (w) | max | max (w) | bias (w) | image RMS (w) | absorbed/emitted |",
+          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 for r in runs:
     lines.append(f"| {r['name']} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['elements']} | {r['links']} | {r['rays']} | "
                  f"{r['peak_rss_mib']:.0f} | {r['output_bytes'] / 1024:.0f} | {pct(r['rms']):.2f}% | {pct(r['rms_weighted']):.2f}% | "
-                 f"{pct(r['max']):.1f}% | {pct(r['max_weighted']):.1f}% | {percent(r['image_rms_weighted'])} | "
+                 f"{pct(r['max']):.1f}% | {pct(r['max_weighted']):.1f}% | {bias(r)} | {percent(r['image_rms_weighted'])} | "
                  f"{r['absorbed_over_emitted']:.3f} |")
 lines += ["", "![error against time](error_vs_time.png)", "", "![links and memory](cost_vs_epsilon.png)", ""]
 if "importance" in methods and "hierarchical" in methods:
-    lines += ["Equal error (importance-weighted RMS at the sample points): for each importance-driven run, the fastest "
-              "view-independent run with at most its error.", "",
-              "| importance run | its error | its time (s) | fastest view-independent run at ≤ that error | time (s) | time ratio |",
-              "| --- | ---: | ---: | --- | ---: | ---: |"]
-    for r in sorted(of("importance"), key=lambda r: r["seconds"]):
-        v = fastest_within("hierarchical", "rms_weighted", r["rms_weighted"])
-        if v is None:
-            lines.append(f"| {r['name']} | {pct(r['rms_weighted']):.2f}% | {r['seconds']:.2f} | none reaches it | | > "
-                         f"{max(x['seconds'] for x in of('hierarchical')) / r['seconds']:.2f} |")
+    lines += ["Equal error in what the walkthrough sees (importance-weighted RMS at the sample points): for each "
+              "importance-driven run, the time the view-independent method needs for the same error, interpolated "
+              "(log-log) between the two view-independent runs whose errors bracket it; wall time and CPU time "
+              "(user + system, steadier on a shared machine).", "",
+              "| importance run | error | wall (s) | CPU (s) | view-independent wall (s) | CPU (s) | wall ratio | CPU ratio |",
+              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for r in sorted(of("importance"), key=lambda r: -r["epsilon"]):
+        wall = time_at("hierarchical", "rms_weighted", r["rms_weighted"], "seconds")
+        cpu = time_at("hierarchical", "rms_weighted", r["rms_weighted"], "cpu_seconds")
+        if wall is None:
+            lines.append(f"| {r['name']} | {pct(r['rms_weighted']):.2f}% | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | "
+                         "not bracketed by the view-independent runs | | | |")
         else:
-            lines.append(f"| {r['name']} | {pct(r['rms_weighted']):.2f}% | {r['seconds']:.2f} | {v['name']} | {v['seconds']:.2f} | "
-                         f"{v['seconds'] / r['seconds']:.2f} |")
+            lines.append(f"| {r['name']} | {pct(r['rms_weighted']):.2f}% | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | "
+                         f"{wall:.2f} | {cpu:.2f} | {wall / r['seconds']:.2f} | {cpu / r['cpu_seconds']:.2f} |")
     lines.append("")
 for im in ref["images"]:
     lines += [f"![reference, viewpoint {im['view']}]({im['file']})"]

@@ -18,6 +18,7 @@ TEST(Accuracy, RelativeErrorsOnAHandComputedCase) {
   EXPECT_NEAR(e.max, 1.0 / 2.0, 1e-12);  // |3 − 2| / mean(1, 2, 3)
   // Weights relative to their mean (4/3): 1.5, 0.75, 0.75; largest weighted |a − r| = 0.75; Σwr/Σw = 7/4.
   EXPECT_NEAR(e.max_weighted, 0.75 / (7.0 / 4.0), 1e-12);
+  EXPECT_NEAR(e.bias, (2 * 0.5 + 0 - 1) / (2 * 1 + 2 + 3.0), 1e-12);
 }
 
 TEST(Accuracy, ReferenceErrorBarIsTheRelativeRmsOfTheHalfWidths) {

@@ -24,7 +24,7 @@ subprocess.run([walkrad, "sweep", scene, "-o", out, "-q", "--epsilons", "1e-2,1e
 
 failures = []
 FIELDS = ["method", "epsilon", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays", "triangles",
-          "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max", "max_weighted", "image_pixels", "image_rms",
+          "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max", "max_weighted", "bias", "image_pixels", "image_rms",
           "image_rms_weighted", "reference_ci_rms", "reference_ci_rms_weighted", "reference_image_ci_rms",
           "absorbed_over_emitted", "t_read", "t_prepare", "t_solve", "t_mesh", "t_write"]
 with open(os.path.join(out, "sweep.csv")) as f:

@@ -5,6 +5,7 @@
 //   rms_weighted = sqrt(Σ w (a − r)² / Σ w r²)
 //   max          = max |a − r| / mean(r)
 //   max_weighted = max (w / mean(w)) |a − r| / (Σ w r / Σ w)
+//   bias         = Σ w (a − r) / Σ w r   (signed: below 0, the bake is too dark on average)
 #pragma once
 
 #include <cstddef>
@@ -13,7 +14,7 @@
 namespace walkrad {
 
 struct ErrorMeasures {
-  double rms = 0, rms_weighted = 0, max = 0, max_weighted = 0;
+  double rms = 0, rms_weighted = 0, max = 0, max_weighted = 0, bias = 0;
   size_t points = 0;  // compared
 };
 
