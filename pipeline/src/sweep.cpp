@@ -294,6 +294,8 @@ SweepSummary run_sweep(const SweepSettings& s) {
     args.insert(args.end(), run.args.begin(), run.args.end());
     const std::string log_path = out.path("bakes/" + run.name + ".log");
     const ProcessRun p = run_process(exe, args, log_path);
+    if (p.exit_code >= kExitBadArguments && p.exit_code <= kExitLimitReached)  // the bake's own refusal: keep its code
+      throw InputError(s.scene, "run " + run.name, "the bake failed: " + last_line(log_path), ExitCode(p.exit_code));
     if (p.exit_code != 0)
       throw std::runtime_error("the bake of run " + run.name + " failed (exit code " + std::to_string(p.exit_code) +
                                "): " + last_line(log_path));
@@ -352,6 +354,7 @@ SweepSummary run_sweep(const SweepSettings& s) {
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     const ProcessRun p = run_process(python, {out.path("plot_sweep.py"), out.path("")}, out.path("plot.log"));
     summary.plotted = p.exit_code == 0;
+    if (summary.plotted) fs::remove(out.path("plot.log"));
     if (!summary.plotted)
       std::fprintf(stderr, "walkrad: warning: plots and report.md not written (python3 with matplotlib is needed: %s)\n",
                    last_line(out.path("plot.log")).c_str());

@@ -42,8 +42,9 @@ struct SweepSummary {
   bool plotted = false;
 };
 
-// Throws InputError (bad scene or walkthrough, no viewpoints), OutputError, std::runtime_error (a bake
-// failed: the message names the run and quotes its error).
+// Throws InputError (bad scene or walkthrough, no viewpoints; or a bake refused its input or settings:
+// the message names the run, quotes the bake's error and keeps its exit code), OutputError,
+// std::runtime_error (a bake crashed).
 SweepSummary run_sweep(const SweepSettings& settings);
 
 }  // namespace walkrad
