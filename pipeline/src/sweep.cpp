@@ -1,16 +1,14 @@
 #include "walkrad/pipeline/sweep.h"
 
 #include <algorithm>
-#include <chrono>
-#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
-#include <stb_image_write.h>
 #include <tbb/global_control.h>
 
 #include "walkrad/formats/error.h"
@@ -18,13 +16,10 @@
 #include "walkrad/formats/walkthrough.h"
 #include "walkrad/pipeline/accuracy.h"
 #include "walkrad/pipeline/bake_process.h"
-#include "walkrad/pipeline/bake_sampler.h"
-#include "walkrad/pipeline/exposure.h"
-#include "walkrad/pipeline/reference_tracer.h"
+#include "walkrad/pipeline/reference_set.h"
 #include "walkrad/pipeline/scene_cleanup.h"
 #include "walkrad/pipeline/staged_output.h"
 #include "walkrad/pipeline/sweep_plot_script.h"
-#include "walkrad/pipeline/view_samples.h"
 
 namespace walkrad {
 
@@ -32,90 +27,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
 // The phases a bake's report.json may list, in pipeline order (a column each in sweep.csv).
 const char* const kPhases[] = {"read", "prepare", "importance", "subdivide", "form factors", "solve", "exposure", "mesh", "write"};
-
-// The reference along a set of view rays: where each ray first meets a front face, and there B with
-// its standard error (luminance). NaN where the ray escapes, meets a back face or an emitter (an
-// emitter's B is its E, right in every bake, and would swamp the relative error).
-struct ReferenceSet {
-  std::vector<ViewRay> rays;
-  std::vector<double> distance, luminance, standard_error, weight;
-  std::vector<Vec3> B;  // for images; emitters hold E
-  uint64_t rays_cast = 0;
-  double seconds = 0;
-};
-
-ReferenceSet trace_reference(const Scene& scene, const RayScene& rays, const ReferenceTracer& tracer,
-                             std::vector<ViewRay> view_rays, int samples, uint64_t seed) {
-  const auto t0 = Clock::now();
-  ReferenceSet r;
-  r.rays = std::move(view_rays);
-  const size_t n = r.rays.size();
-  r.distance.assign(n, NAN);
-  r.luminance.assign(n, NAN);
-  r.standard_error.assign(n, NAN);
-  r.B.assign(n, Vec3{});
-  std::vector<SurfacePoint> points;
-  std::vector<size_t> index;
-  for (size_t k = 0; k < n; ++k) {
-    r.weight.push_back(r.rays[k].weight);
-    const RayScene::Hit hit = rays.intersect(r.rays[k].origin, r.rays[k].direction);
-    ++r.rays_cast;
-    if (!hit.hit || dot(polygon_normal(scene.polygons[hit.polygon]), r.rays[k].direction) >= 0) continue;
-    r.distance[k] = length(hit.position - r.rays[k].origin);
-    const Material& m = scene.materials[scene.polygons[hit.polygon].material];
-    if (m.emits()) {
-      r.B[k] = m.emission;
-      continue;
-    }
-    points.push_back({hit.polygon, hit.position});
-    index.push_back(k);
-  }
-  ReferenceSettings rs;
-  rs.samples = samples;
-  rs.seed = seed;
-  const std::vector<RadiosityEstimate> est = tracer.estimate(points, rs, r.rays_cast);
-  for (size_t i = 0; i < est.size(); ++i) {
-    r.B[index[i]] = est[i].B;
-    r.luminance[index[i]] = luminance(est[i].B);
-    r.standard_error[index[i]] = est[i].luminance_error;
-  }
-  r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  return r;
-}
-
-// A bake's luminance of B along the reference's rays; NaN where the reference has none, or where the
-// bake's first hit is elsewhere (a silhouette the two meshes resolve differently).
-std::vector<double> sample_bake(const BakeSampler& bake, const ReferenceSet& ref, double tolerance) {
-  std::vector<double> out(ref.rays.size(), NAN);
-  for (size_t k = 0; k < ref.rays.size(); ++k) {
-    if (std::isnan(ref.luminance[k])) continue;
-    const BakeSampler::Sample s = bake.along(ref.rays[k].origin, ref.rays[k].direction);
-    if (s.hit && std::fabs(s.distance - ref.distance[k]) <= tolerance) out[k] = luminance(s.B);
-  }
-  return out;
-}
-
-// A reference image as an sRGB PNG: display colour = B/π × exposure (95th percentile → 0.9, emitters
-// clip), rows top first.
-void write_image_png(const std::string& path, const std::vector<Vec3>& B, const std::vector<double>& lum, int width,
-                     int height) {
-  std::vector<double> seen;
-  for (double l : lum)
-    if (!std::isnan(l)) seen.push_back(l / kPi);
-  const double exposure = exposure_for(seen);
-  std::vector<uint8_t> rgb(size_t(width) * size_t(height) * 3);
-  for (size_t k = 0; k < B.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      const double v = std::clamp(B[k][c] / kPi * exposure, 0.0, 1.0);
-      const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-      rgb[3 * k + size_t(c)] = uint8_t(std::lround(255 * s));
-    }
-  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3)) throw OutputError(path + ": cannot write PNG");
-}
 
 std::string number(double v) {
   char buf[32];
