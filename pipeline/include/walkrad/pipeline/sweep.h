@@ -23,7 +23,7 @@ struct SweepSettings {
   double min_area = 0;                // hierarchical --min-area (0: the bake's default)
   size_t points = 2048;               // reference sample points, over up to max_views viewpoints
   size_t max_views = 16;
-  int samples = 8192;                 // paths per sample point (Cornell box: 95% bar ≈ 1.8%)
+  int samples = 8192;                 // paths per point (Cornell box 95% bar: 2.55% at 4096, 0.92% at 32768)
   int image_width = 64;               // reference images: width in pixels (0: none)
   size_t image_views = 4;             // viewpoints with an image
   int image_samples = 1024;           // paths per pixel
