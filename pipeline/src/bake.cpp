@@ -232,6 +232,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.gauss_seidel = s.solver == "gauss-seidel";
   hs.visibility = plan.visibility.on;
   hs.indirect = plan.indirect.on;
+  hs.closed = plan.closure.on;
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -317,7 +318,7 @@ BakeSummary bake(const BakeSettings& s) {
   const Scene scene = split_contacts(input, split_stats);
   const RayScene rays(scene);
   const ClusterTree tree = build_cluster_tree(scene);
-  const EffectPlan plan = plan_effects(scene, views, s.view_independent, s.method, s.effects);
+  const EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects);
   if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
   const MethodResult result = s.method == "classic" ? solve_classic(s, scene, rays, tree, bounds, plan, phases)
                                                     : solve_hierarchical(s, scene, rays, tree, views, plan, phases);

@@ -1,8 +1,10 @@
 #include "walkrad/pipeline/effect_plan.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "walkrad/formats/error.h"
+#include "walkrad/pipeline/sampling.h"
 
 namespace walkrad {
 
@@ -55,11 +57,34 @@ bool is_convex_enclosure(const Scene& scene) {
   return true;
 }
 
-EffectPlan plan_effects(const Scene& scene, const std::vector<Viewpoint>& views, bool view_independent,
-                        const std::string& method, const std::map<std::string, std::string>& overrides) {
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast) {
+  const size_t n = scene.polygons.size();
+  const size_t per = std::clamp<size_t>(65536 / std::max<size_t>(n, 1), 1, 64);
+  for (size_t i = 0; i < n; ++i) {
+    const Polygon& p = scene.polygons[i];
+    const Vec3 normal = polygon_normal(p);
+    // A frame around the normal for cosine-weighted directions.
+    const Vec3 t = normalize(cross(std::fabs(normal.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), normal));
+    const Vec3 b = cross(normal, t);
+    Rng rng(i, 0x636c6f73ull);  // "clos"
+    for (size_t k = 0; k < per; ++k) {
+      const Vec3 origin = sample_polygon(p, rng.uniform(), rng.uniform()) + normal * rays.offset();
+      const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
+      const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - r * r));
+      ++rays_cast;
+      if (!rays.intersect(origin, d).hit) return false;
+    }
+  }
+  return n > 0;
+}
+
+EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
+                        bool view_independent, const std::string& method,
+                        const std::map<std::string, std::string>& overrides) {
   for (const auto& [name, value] : overrides) {
-    if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters")
-      throw InputError("--effect", name, "unknown effect (known: indirect, visibility, importance, clusters)", kExitBadArguments);
+    if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure")
+      throw InputError("--effect", name, "unknown effect (known: indirect, visibility, importance, clusters, closure)",
+                       kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
   }
@@ -78,7 +103,15 @@ EffectPlan plan_effects(const Scene& scene, const std::vector<Viewpoint>& views,
   plan.clusters.on = method == "hierarchical";
   plan.clusters.reason = plan.clusters.on ? "hierarchical method: groups of polygons exchange light through cluster links"
                                           : "classic method: element to element only";
+  uint64_t closure_rays = 0;
+  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays);
+  plan.closure.on = closed;
+  plan.closure.reason = method != "hierarchical" ? "classic method: its uniform elements' row sums need no correction"
+                        : closed ? "no ray from any surface escapes (" + std::to_string(closure_rays) +
+                                       " rays): each leaf's form factors are normalised to sum to 1"
+                                 : "rays escape the scene: row sums are left as computed";
   apply(plan.indirect, "indirect", overrides);
+  apply(plan.closure, "closure", overrides);
   apply(plan.visibility, "visibility", overrides);
   apply(plan.importance, "importance", overrides);
   apply(plan.clusters, "clusters", overrides);
@@ -94,7 +127,7 @@ EffectPlan plan_effects(const Scene& scene, const std::vector<Viewpoint>& views,
 
 nlohmann::json EffectPlan::to_json() const {
   return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
-          {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}};
+          {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -104,6 +137,7 @@ std::string EffectPlan::explain() const {
   line("visibility", visibility);
   line("importance", importance);
   line("clusters", clusters);
+  line("closure", closure);
   return out;
 }
 

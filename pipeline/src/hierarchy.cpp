@@ -30,7 +30,7 @@ uint32_t Hierarchy::add_element(const Polygon& shape, uint32_t polygon, int32_t 
   const Material& m = scene_.materials[shape.material];
   n.rho = m.reflectance;
   n.emission = m.emission;
-  n.B = m.emission;
+  n.B = n.Bt = m.emission;
   nodes_.push_back(n);
   ++element_count_;
   return uint32_t(nodes_.size() - 1);
@@ -69,7 +69,7 @@ uint32_t Hierarchy::add_cluster(uint32_t tree_node, int32_t parent) {
   if (me.area > 0) {
     me.rho = rho / me.area;
     me.emission = e / me.area;
-    me.B = me.emission;
+    me.B = me.Bt = me.emission;
   }
   me.child_begin = uint32_t(children_.size());
   me.child_count = uint32_t(kids.size());
@@ -105,7 +105,10 @@ bool Hierarchy::subdivide(uint32_t e) {
   me.child_begin = uint32_t(children_.size());
   me.child_count = 4;
   children_.insert(children_.end(), idx.begin(), idx.end());
-  for (uint32_t k : idx) nodes_[k].B = me.B;  // start from the parent's value, not from zero
+  for (uint32_t k : idx) {  // start from the parent's value, not from zero
+    nodes_[k].B = me.B;
+    nodes_[k].Bt = me.Bt;
+  }
 
   // Hand the parent's view hits to the children that contain them (ties to the first child).
   const uint32_t hb = me.hit_begin, he = me.hit_end;

@@ -123,3 +123,33 @@ TEST_F(EffectPlanBake, NoViewpointsNoImportance) {
 
 }  // namespace
 }  // namespace walkrad
+
+namespace walkrad {
+namespace {
+
+double balance(const nlohmann::json& report) {
+  const auto& e = report["energy"];
+  double a = 0, m = 0;
+  for (int k = 0; k < 3; ++k) {
+    a += e["absorbed_w"][k].get<double>();
+    m += e["emitted_w"][k].get<double>();
+  }
+  return a / m;
+}
+
+// A closed scene: every leaf sends all its power through its links (hierarchical_solver.h, closed):
+// the power balance closes, where without it coarse links lose some.
+TEST_F(EffectPlanBake, ClosedSceneKeepsItsPower) {
+  const nlohmann::json planned = bake_scene(box_with_block(), "closed", "hierarchical");
+  const nlohmann::json off = bake_scene(box_with_block(), "open", "hierarchical", {{"closure", "off"}});
+  EXPECT_TRUE(planned["effects"]["closure"]["on"].get<bool>());
+  EXPECT_NEAR(balance(planned), 1.0, 0.01);
+  EXPECT_GT(std::fabs(balance(off) - 1.0), std::fabs(balance(planned) - 1.0));
+  // An open box (no top face) is not closed.
+  Scene open = box_with_block();
+  open.polygons.erase(open.polygons.begin() + 1);
+  EXPECT_FALSE(bake_scene(open, "no-lid", "hierarchical")["effects"]["closure"]["on"].get<bool>());
+}
+
+}  // namespace
+}  // namespace walkrad

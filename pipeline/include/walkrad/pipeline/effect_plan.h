@@ -4,7 +4,9 @@
 //   visibility  — only if something can occlude: never in a convex enclosure (every polygon on or in
 //                 front of every other polygon's plane, so no segment between two of them crosses a third);
 //   importance  — only with viewpoints (and not --view-independent);
-//   clusters    — the hierarchical method's cluster links (always with it; none in the classic method).
+//   clusters    — the hierarchical method's cluster links (always with it; none in the classic method);
+//   closure     — a closed scene (no ray from any surface escapes: every form factor row sums to 1),
+//                 where the hierarchical method normalises each leaf's row sum to 1.
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
 // and manifest.json and report.json keep it.
 #pragma once
@@ -16,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "walkrad/formats/scene.h"
+#include "walkrad/pipeline/ray_scene.h"
 
 namespace walkrad {
 
@@ -26,17 +29,22 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters;
+  Effect indirect, visibility, importance, clusters, closure;
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
 };
 
 // overrides: effect name → "on" or "off" (InputError naming --effect for an unknown name or value).
-EffectPlan plan_effects(const Scene& scene, const std::vector<Viewpoint>& views, bool view_independent,
-                        const std::string& method, const std::map<std::string, std::string>& overrides);
+EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
+                        bool view_independent, const std::string& method,
+                        const std::map<std::string, std::string>& overrides);
 
 // Whether every polygon lies on or in front of every other polygon's plane (tolerance relative to the
 // scene's size): then nothing can stand between two surfaces.
 bool is_convex_enclosure(const Scene& scene);
+
+// Whether no ray leaves the scene: cosine-distributed rays from stratified points of every polygon
+// (about 65,536 in all, at least one a polygon), each must hit a surface. Deterministic.
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast);
 
 }  // namespace walkrad

@@ -43,6 +43,13 @@ struct HierarchicalSettings {
   bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
   bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
   bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)
+  // The scene is closed (effect plan: no ray escapes), so every leaf sends all of its power B·A
+  // through its links and its ancestors'; coarse links take their transfer from the leaves below them
+  // by area, which makes some leaves send too little and others too much, and the bake loses power
+  // where bright leaves send too little. Closed: each leaf's radiosity is carried away scaled by
+  // 1 / (what its links take). Balance absorbed/emitted: empty lit box 0.973 → 1.000; one-room office
+  // 0.907 → 0.971 view-independent, 0.628 → 0.961 with importance (ε 1e-4).
+  bool closed = false;
 };
 
 struct IterationStats {
