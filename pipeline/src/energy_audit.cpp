@@ -57,12 +57,12 @@ EnergyAudit audit_hierarchy(const Hierarchy& h) {
   return audit;
 }
 
-nlohmann::json audit_json(const EnergyAudit& a, double closes_within) {
+nlohmann::json audit_json(const EnergyAudit& a, double bound) {
   auto v = [](const Vec3& x) { return nlohmann::json::array({x.x, x.y, x.z}); };
   return {{"emitted_w", v(a.emitted)},         {"absorbed_w", v(a.absorbed)},   {"residual_w", v(a.residual())},
           {"escaped_w", v(a.escaped)},         {"unconverged_w", v(a.unconverged)},
-          {"imbalance", a.imbalance()},        {"closes_within", closes_within},
-          {"closes", a.imbalance() <= closes_within}};
+          {"imbalance", a.imbalance()},        {"bound", bound},
+          {"balanced", a.imbalance() <= bound}};
 }
 
 }  // namespace walkrad

@@ -46,8 +46,9 @@ EnergyAudit audit_matrix(const FormFactorMatrix& f, const std::vector<double>& a
 // ancestors' (irradiance and row sums pushed down as the solver does, without its row-sum clamp).
 EnergyAudit audit_hierarchy(const Hierarchy& h);
 
-// report.json's "energy_audit": the terms above, the relative imbalance, and whether it closes
-// within closes_within (1e-4: the bound the stability suite holds closed scenes to).
-nlohmann::json audit_json(const EnergyAudit& audit, double closes_within = 1e-4);
+// report.json's "energy_audit": the terms above (W, per channel), the relative imbalance, and whether
+// it is within `bound` ("balanced"; 1e-4: what the stability suite holds closed scenes to with the
+// classic method; open scenes and the hierarchical method's one-way links miss it, see numerics.md).
+nlohmann::json audit_json(const EnergyAudit& audit, double bound = 1e-4);
 
 }  // namespace walkrad
