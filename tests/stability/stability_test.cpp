@@ -119,16 +119,17 @@ struct Placement {
 
 class ScaleAndOffset : public ::testing::TestWithParam<Placement> {};
 
-// The moved solution's values in the reference's element order: each element matched to the one of
-// the same polygon whose centroid, mapped back, is nearest (a contact cut may start a piece at
-// another corner, and its grid then runs in another order).
+// The moved solution's values in the reference's element order: each element matched to the one
+// facing the same way whose centroid, mapped back, is nearest (contact cuts of equal length may come
+// out in another order, and a piece may start at another corner).
 std::vector<Vec3> matched(const Solution& ref, const Solution& moved, double scale, Vec3 offset) {
   std::vector<Vec3> out;
   for (size_t i = 0; i < ref.B.size(); ++i) {
     size_t best = 0;
     double best_d = INFINITY;
     for (size_t k = 0; k < moved.B.size(); ++k) {
-      if (moved.polygon[k] != ref.polygon[i]) continue;
+      const Vec3 nr = polygon_normal(ref.scene.polygons[ref.polygon[i]]), nm = polygon_normal(moved.scene.polygons[moved.polygon[k]]);
+      if (dot(nr, nm) < 0.99) continue;  // back to back faces share centroids
       const Vec3 d = (moved.centroid[k] - offset) / scale - ref.centroid[i];
       if (dot(d, d) < best_d) { best_d = dot(d, d); best = k; }
     }
@@ -149,7 +150,8 @@ double largest_difference(const std::vector<Vec3>& ref, const std::vector<Vec3>&
   return worst;
 }
 
-// Classic: element for element, within 1e-4 (measured: 5e-15 for the scalings, 6e-5 at 1e5 m).
+// Classic: element for element, within 1e-4 (measured: 5e-15 for the scalings, 5.6e-5 at 1e5 m,
+// 5.5e-7 for 2 mm at 1e5 m).
 TEST_P(ScaleAndOffset, ClassicGivesTheSameRadiosity) {
   const Placement p = GetParam();
   const Solution ref = solve_classic(lit_room(), 0.25);
@@ -174,8 +176,9 @@ std::vector<Vec3> polygon_means(const Solution& s, size_t polygons) {
 }
 
 // Hierarchical: its refinement compares B·A·ρ·F with ε, so a visibility ray that flips with the last
-// bit of a coordinate may split one element more or less, and leaves do not match one to one. The
-// bound holds for each input polygon's mean radiosity.
+// bit of a coordinate may split one element more or less, and leaves do not match one to one
+// (measured 1,875 vs 1,878). The bound holds for each input polygon's mean radiosity (measured
+// within 0.55%), not element for element.
 class HierarchicalScaleAndOffset : public ::testing::TestWithParam<Placement> {};
 
 TEST_P(HierarchicalScaleAndOffset, GivesTheSameMeans) {
@@ -192,13 +195,22 @@ TEST_P(HierarchicalScaleAndOffset, GivesTheSameMeans) {
 
 INSTANTIATE_TEST_SUITE_P(Placements, ScaleAndOffset,
                          ::testing::Values(Placement{1e-3, {}}, Placement{1e3, {}}, Placement{1, {1e5, 1e5, 1e5}},
-                                           Placement{1e3, {0, -1e5, 1e5}}));
+                                           Placement{1e3, {0, -1e5, 1e5}}, Placement{1e-3, {1e5, 0, 0}}));
 INSTANTIATE_TEST_SUITE_P(Placements, HierarchicalScaleAndOffset,
-                         ::testing::Values(Placement{1e3, {}}, Placement{1e3, {0, -1e5, 1e5}}));
-// Not held (docs/numerics.md, "Open"): the same room at ×1e-3 *and* 1e5 m away (2 mm at 100 km)
-// differs by up to 31% on some classic elements; the hierarchical method at ×1e-3 lights the floor
-// under the block, and 1e5 m away its polygon means differ by 7%.
+                         ::testing::Values(Placement{1e-3, {}}, Placement{1e3, {}}, Placement{1, {1e5, 1e5, 1e5}},
+                                           Placement{1e3, {0, -1e5, 1e5}}));
 
+// The 2 mm room 1e5 m away: its coordinates' rounding is 1.6e-6 of its size (classic: 5.5e-7), and
+// more refinement decisions flip (measured 2,100 leaves instead of 1,875, polygon means within 2.7%).
+TEST(HierarchicalScaleAndOffset, TinyRoomFarAwayWithinStatedBound) {
+  Scene room = lit_room();
+  for (size_t k = 0; k < room.polygons.size(); ++k) room.polygons[k].source = uint32_t(k);
+  const Solution ref = solve_hierarchy(room, 1e-3);
+  const Solution moved = solve_both_ways([&] { return solve_hierarchy(transformed(room, 1e-3, {1e5, 0, 0}), 1e-3); });
+  const double worst = largest_difference(polygon_means(ref, room.polygons.size()), polygon_means(moved, room.polygons.size()));
+  std::printf("hierarchical ×1e-3 +1e5: largest relative difference of polygon means %.2e\n", worst);
+  EXPECT_LE(worst, 5e-2);
+}
 // ---- Contacts: a dark closed room (walls back to back: an inward and an outward box on the same
 // faces, touching along every edge and corner) standing on the floor of a lit room, a rug coplanar
 // with and overlapping the floor, and two interpenetrating boxes. No NaN, no negative value, and no
@@ -246,7 +258,7 @@ TEST(Contacts, HierarchicalNoLeakNoNegative) {
   std::printf("hierarchical junctions: dark room max B %.3e, imbalance %.2e, %d sweeps\n", largest_in_dark_room(s),
               s.audit.imbalance(), s.iterations);
   // Not leak-free: a link to a cluster pushes its irradiance onto every surface in it, the dark room's
-  // inward faces included (docs/numerics.md, "Open"). Measured 0.31 W/m² (the lamp: 10 W/m²).
+  // inward faces included (docs/numerics.md, "Open"). Measured 0.32 W/m² (the lamp: 10 W/m²).
   EXPECT_LE(largest_in_dark_room(s), 0.5);
 }
 
