@@ -43,6 +43,20 @@ inline void add_box(Scene& scene, Vec3 lo, Vec3 hi, uint32_t material, bool inwa
   }
 }
 
+// A closed 2 m room of reflectance rho (material 0) with a square lamp of half-side h and emission e
+// (material 1, ρ 0.5) centred on its ceiling, flush with it and facing down.
+inline Scene room_with_lamp(const char* name, double rho, Vec3 e, double h) {
+  Scene scene;
+  scene.source = name;
+  scene.materials.push_back({"wall", {rho, rho, rho}, {}});
+  scene.materials.push_back({"lamp", {0.5, 0.5, 0.5}, e});
+  add_box(scene, {0, 0, 0}, {2, 2, 2}, 0, true);
+  Polygon lamp = quad({1 - h, 1 - h, 2}, {1 + h, 1 - h, 2}, {1 + h, 1 + h, 2}, {1 - h, 1 + h, 2}, 1);
+  if (polygon_normal(lamp).z > 0) std::swap(lamp.v[1], lamp.v[3]);
+  scene.polygons.push_back(lamp);
+  return scene;
+}
+
 // Every vertex mapped to offset + scale · v (cameras are not used here).
 inline Scene transformed(Scene scene, double scale, Vec3 offset) {
   for (Polygon& p : scene.polygons)

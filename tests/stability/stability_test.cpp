@@ -101,14 +101,8 @@ TEST(Furnace099, HierarchicalWithinStatedBound) {
 // Radiosity is intensive (W/m²), and every tolerance of both methods is relative to the scene's size.
 
 Scene lit_room() {
-  Scene scene;
-  scene.source = "lit room";
-  scene.materials.push_back({"wall", {0.7, 0.7, 0.7}, {}});
-  scene.materials.push_back({"lamp", {0.5, 0.5, 0.5}, {10, 10, 10}});
-  add_box(scene, {0, 0, 0}, {2, 2, 2}, 0, true);
+  Scene scene = room_with_lamp("lit room", 0.7, {10, 10, 10}, 0.3);
   add_box(scene, {0.4, 0.4, 0}, {1.0, 1.0, 0.8}, 0, false);  // on the floor (z = 0)
-  scene.polygons.push_back(quad({0.7, 0.7, 2}, {0.7, 1.3, 2}, {1.3, 1.3, 2}, {1.3, 0.7, 2}, 1));
-  if (dot(polygon_normal(scene.polygons.back()), Vec3(0, 0, -1)) < 0) std::swap(scene.polygons.back().v[1], scene.polygons.back().v[3]);
   return scene;
 }
 
@@ -176,9 +170,9 @@ std::vector<Vec3> polygon_means(const Solution& s, size_t polygons) {
 }
 
 // Hierarchical: its refinement compares B·A·ρ·F with ε, so a visibility ray that flips with the last
-// bit of a coordinate may split one element more or less, and leaves do not match one to one
-// (measured 1,875 vs 1,878). The bound holds for each input polygon's mean radiosity (measured
-// within 0.55%), not element for element.
+// bit of a coordinate may split one element more or less, or a link may end one level higher, and
+// leaves do not match one to one. The bound holds for each input polygon's mean radiosity (measured
+// within 0.48%), not element for element.
 class HierarchicalScaleAndOffset : public ::testing::TestWithParam<Placement> {};
 
 TEST_P(HierarchicalScaleAndOffset, GivesTheSameMeans) {
@@ -201,7 +195,7 @@ INSTANTIATE_TEST_SUITE_P(Placements, HierarchicalScaleAndOffset,
                                            Placement{1e3, {0, -1e5, 1e5}}));
 
 // The 2 mm room 1e5 m away: its coordinates' rounding is 1.6e-6 of its size (classic: 5.5e-7), and
-// more refinement decisions flip (measured 2,100 leaves instead of 1,875, polygon means within 2.7%).
+// more refinement decisions flip (polygon means measured within 2.4%).
 TEST(HierarchicalScaleAndOffset, TinyRoomFarAwayWithinStatedBound) {
   Scene room = lit_room();
   for (size_t k = 0; k < room.polygons.size(); ++k) room.polygons[k].source = uint32_t(k);
@@ -322,15 +316,7 @@ TEST(SliversAndTinyElements, HierarchicalWithinStatedBound) {
 // closed 2 m room, everything of ρ = 0.5. Closed and uniform: Σ A B = Φ / (1 − ρ) = 2 W exactly.
 
 Scene tiny_lamp() {
-  Scene scene;
-  scene.source = "tiny lamp";
-  scene.materials.push_back({"wall", {0.5, 0.5, 0.5}, {}});
-  scene.materials.push_back({"lamp", {0.5, 0.5, 0.5}, {1e6, 1e6, 1e6}});
-  add_box(scene, {0, 0, 0}, {2, 2, 2}, 0, true);
-  const double h = 0.5e-3;
-  scene.polygons.push_back(quad({1 - h, 1 - h, 2}, {1 + h, 1 - h, 2}, {1 + h, 1 + h, 2}, {1 - h, 1 + h, 2}, 1));
-  if (polygon_normal(scene.polygons.back()).z > 0) std::swap(scene.polygons.back().v[1], scene.polygons.back().v[3]);
-  return scene;
+  return room_with_lamp("tiny lamp", 0.5, {1e6, 1e6, 1e6}, 0.5e-3);
 }
 
 void expect_power(const Solution& s, double tolerance) {
