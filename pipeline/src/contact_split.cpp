@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <vector>
 
 #include "walkrad/pipeline/cluster_tree.h"
@@ -127,15 +126,11 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
     // One cut per line (collinear edges: a row of books, two boxes side by side), longest first.
     for (Cut& c : cuts)
       if (c.n.x < 0 || (c.n.x == 0 && (c.n.y < 0 || (c.n.y == 0 && c.n.z < 0)))) { c.n = -c.n; c.d = -c.d; }
-    // Ordered by quantities quantised to the tolerance, relative to the scene's centre: edges of equal
-    // length (a square box's feet) differ in their last bits once the scene is scaled or moved, and
-    // must not swap (the pieces, their order and thus the bake would change; docs/numerics.md).
-    const Vec3 centre = bounds.center();
-    auto key = [&](const Cut& c) {
-      return std::make_tuple(-std::llround(c.length / tol), std::llround(c.n.x * 1e6), std::llround(c.n.y * 1e6),
-                             std::llround(c.n.z * 1e6), std::llround((c.d - dot(c.n, centre)) / tol));
-    };
-    std::stable_sort(cuts.begin(), cuts.end(), [&](const Cut& a, const Cut& b) { return key(a) < key(b); });
+    // Lengths compared in steps of the tolerance, ties kept in discovery order (tree order): edges of
+    // equal length (a square box's feet) differ in their last bits once the scene is scaled or moved,
+    // and must not swap (the pieces, their order and thus the bake would change; docs/numerics.md).
+    std::stable_sort(cuts.begin(), cuts.end(),
+                     [&](const Cut& a, const Cut& b) { return std::llround(a.length / tol) > std::llround(b.length / tol); });
     std::vector<Cut> unique;
     for (const Cut& c : cuts) {
       bool same = false;
