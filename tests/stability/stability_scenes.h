@@ -76,7 +76,7 @@ struct Solution {
   Scene scene;                    // the contact-split scene the solution refers to
 };
 
-inline Solution solve_classic(const Scene& input, double element_size, bool accelerate = true) {
+inline Solution solve_classic(const Scene& input, double element_size, bool accelerate = true, int rays_per_point = 1) {
   Solution s;
   ContactSplitStats split;
   s.scene = split_contacts(input, split);
@@ -84,7 +84,9 @@ inline Solution solve_classic(const Scene& input, double element_size, bool acce
   const ClusterTree tree = build_cluster_tree(s.scene);
   const Subdivision sub = subdivide_uniform(s.scene, element_size);
   FormFactorCounts counts;
-  const FormFactorMatrix f = compute_form_factors(sub, &rays, &tree, {}, counts);
+  FormFactorSettings ffs;
+  ffs.rays_per_point = rays_per_point;
+  const FormFactorMatrix f = compute_form_factors(sub, &rays, &tree, ffs, counts);
   std::vector<Vec3> rho, emission;
   for (const Element& e : sub.elements) {
     const Material& m = s.scene.materials[e.shape.material];

@@ -205,6 +205,7 @@ TEST(HierarchicalScaleAndOffset, TinyRoomFarAwayWithinStatedBound) {
   std::printf("hierarchical ×1e-3 +1e5: largest relative difference of polygon means %.2e\n", worst);
   EXPECT_LE(worst, 5e-2);
 }
+
 // ---- Contacts: a dark closed room (walls back to back: an inward and an outward box on the same
 // faces, touching along every edge and corner) standing on the floor of a lit room, a rug coplanar
 // with and overlapping the floor, and two interpenetrating boxes. No NaN, no negative value, and no
@@ -237,13 +238,15 @@ double largest_in_dark_room(const Solution& s) {
 }
 
 TEST(Contacts, ClassicNoLeakNoNegative) {
-  const Solution s = solve_both_ways([] { return solve_classic(junctions(), 0.25); });
+  const Solution s = solve_both_ways([] { return solve_classic(junctions(), 0.25, true, 16); });
   ASSERT_TRUE(s.converged);
   expect_sane(s, 10 / (1 - 0.8));
   std::printf("classic junctions: dark room max B %.3e, imbalance %.2e, %d iterations\n", largest_in_dark_room(s),
               s.audit.imbalance(), s.iterations);
   EXPECT_EQ(largest_in_dark_room(s), 0.0);
-  EXPECT_LE(s.audit.imbalance(), 1e-3);
+  // Closed: the audit balances within 1e-4. Its imbalance is the non-reciprocity of ray-sampled
+  // visibility, hence 16 rays per quadrature point here (measured 6.4e-5; 3.7e-4 with 1 ray).
+  EXPECT_LE(s.audit.imbalance(), 1e-4);
 }
 
 TEST(Contacts, HierarchicalNoLeakNoNegative) {
