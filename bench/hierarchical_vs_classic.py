@@ -43,6 +43,8 @@ else:
 runs = [("classic, default mesh", bake("classic-default", "--method", "classic"))]
 for eps in ["1e-3", "1e-4", "1e-5", "3e-6"]:
     runs.append((f"hierarchical, ε = {eps}", bake(f"hier-{eps}", "--epsilon", eps)))
+for eps in ["1e-4", "1e-5"]:
+    runs.append((f"hierarchical view-independent, ε = {eps}", bake(f"hier-vi-{eps}", "--epsilon", eps, "--view-independent")))
 rms = {}
 res = subprocess.run([os.path.join(build, "bench/walkrad_compare_bakes"), fine[0], *[r[1][0] for r in runs]],
                      check=True, capture_output=True, text=True).stdout

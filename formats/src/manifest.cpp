@@ -42,11 +42,11 @@ json manifest_to_json(const Manifest& m) {
   for (const Viewpoint& v : m.viewpoints) views.push_back(viewpoint_to_json(v));
   return {{"format", kManifestFormat}, {"version", kManifestVersion}, {"tool", m.tool},
           {"scene", {{"file", m.scene_file}, {"hash", m.scene_hash}}}, {"bounds", bounds_to_json(m.bounds)},
-          {"exposure", m.exposure}, {"chunks", chunks}, {"viewpoints", views}, {"settings", m.settings}};
+          {"exposure", m.exposure}, {"chunks", chunks}, {"viewpoints", views}, {"settings", m.settings}, {"effects", m.effects}};
 }
 
 Manifest manifest_from_json(const json& j, const std::string& file) {
-  check_keys(j, {"format", "version", "tool", "scene", "bounds", "exposure", "chunks", "viewpoints", "settings"}, file, "");
+  check_keys(j, {"format", "version", "tool", "scene", "bounds", "exposure", "chunks", "viewpoints", "settings", "effects"}, file, "");
   if (string(member(j, "format", file, ""), file, "/format") != kManifestFormat)
     throw InputError(file, "/format", std::string("expected \"") + kManifestFormat + "\"");
   if (number(member(j, "version", file, ""), file, "/version") != kManifestVersion)
@@ -89,6 +89,10 @@ Manifest manifest_from_json(const json& j, const std::string& file) {
     }
   }
   m.settings = member(j, "settings", file, "");
+  if (j.contains("effects")) {
+    m.effects = j["effects"];
+    if (!m.effects.is_object()) throw InputError(file, "/effects", "expected an object");
+  }
   return m;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -13,6 +14,7 @@
 #include "walkrad/pipeline/bake.h"
 #include "walkrad/pipeline/bake_diff.h"
 #include "walkrad/pipeline/bake_inspect.h"
+#include "walkrad/pipeline/sweep.h"
 
 int main(int argc, char** argv) {
   using namespace walkrad;
@@ -42,6 +44,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   bake_cmd->add_option("--chunk-triangles", bs.chunk_triangles, "largest streaming chunk, in triangles")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
+  std::vector<std::string> effect_overrides;
+  bake_cmd->add_option("--effect", effect_overrides,
+                       "force an effect on or off: indirect|visibility|importance|clusters=on|off (repeatable)");
+  bake_cmd->add_flag("--explain", bs.explain, "print the effect plan (what is simulated, and why) before solving");
   bool no_compression = false;
   bake_cmd->add_flag("--no-compression", no_compression, "write plain glTF chunks (default: Draco)");
   bake_cmd->add_option("--position-tolerance", bs.position_tolerance,
@@ -84,6 +90,38 @@ int main(int argc, char** argv) {
   inspect_cmd->add_option("bake", inspect_dir, "bake folder")->required();
   inspect_cmd->add_option("--mesh-json", inspect_mesh_json,
                           "write the whole surface (positions, normals, colours, radiosity, indices) as JSON to this file");
+  // sweep: what accuracy costs (docs/accuracy.md).
+  SweepSettings ss;
+  CLI::App* sweep_cmd = app.add_subcommand("sweep", "bake over a range of ε and element sizes; error against a path-traced reference");
+  sweep_cmd->add_option("scene", ss.scene, "scene file (.gltf, .glb, .mgf)")->required();
+  sweep_cmd->add_option("--views", ss.views, "walkthrough JSON (default: the scene's cameras)");
+  sweep_cmd->add_option("-o,--output", ss.output, "output folder (default: <scene name>.sweep)");
+  sweep_cmd->add_option("--methods", ss.methods, "classic, hierarchical (view-independent), importance")
+      ->delimiter(',')->capture_default_str();
+  sweep_cmd->add_option("--epsilons", ss.epsilons, "ε values for the hierarchical methods")->delimiter(',')
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  sweep_cmd->add_option("--element-sizes", ss.element_sizes, "classic element sizes in metres (default: diagonal / 10, 15, 21, 30)")
+      ->delimiter(',')->check(CLI::PositiveNumber);
+  sweep_cmd->add_option("--min-area", ss.min_area, "hierarchical: smallest element in m² (default: the bake's)")
+      ->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--points", ss.points, "reference sample points")->check(CLI::Range(1, 10000000))->capture_default_str();
+  sweep_cmd->add_option("--point-views", ss.max_views, "viewpoints the sample points spread over")->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  sweep_cmd->add_option("--samples", ss.samples, "reference paths per sample point")->check(CLI::Range(2, 10000000))
+      ->capture_default_str();
+  sweep_cmd->add_option("--image-width", ss.image_width, "reference image width in pixels (0: no images)")
+      ->check(CLI::Range(0, 4096))->capture_default_str();
+  sweep_cmd->add_option("--image-views", ss.image_views, "viewpoints with a reference image")->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sweep_cmd->add_option("--image-samples", ss.image_samples, "reference paths per pixel")->check(CLI::Range(2, 10000000))
+      ->capture_default_str();
+  sweep_cmd->add_option("--seed", ss.seed, "reference random seed")->capture_default_str();
+  sweep_cmd->add_option("--threads", ss.threads, "worker threads for the bakes and the reference (default: all cores)")
+      ->check(CLI::Range(0, 1024));
+  sweep_cmd->add_flag("--keep-bakes", ss.keep_bakes, "keep every bake folder under OUTPUT/bakes/");
+  bool no_plots = false, sweep_quiet = false;
+  sweep_cmd->add_flag("--no-plots", no_plots, "write CSV and JSON only (no matplotlib plots or report.md)");
+  sweep_cmd->add_flag("-q,--quiet", sweep_quiet, "no progress lines");
 
   try {
     app.parse(argc, argv);
@@ -96,6 +134,11 @@ int main(int argc, char** argv) {
     if (bake_cmd->parsed()) {
       bs.progress = !quiet;
       bs.compress = !no_compression;
+      for (const std::string& e : effect_overrides) {
+        const size_t eq = e.find('=');
+        if (eq == std::string::npos) throw InputError("--effect", e, "expected NAME=on or NAME=off", kExitBadArguments);
+        bs.effects[e.substr(0, eq)] = e.substr(eq + 1);
+      }
       if (bs.output.empty()) {
         std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
         bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
@@ -103,6 +146,18 @@ int main(int argc, char** argv) {
       const BakeSummary s = bake(bs);
       std::printf("walkrad: baked %s: %zu elements, %zu triangles, %zu viewpoints, exposure %.4g, %.2f s\n",
                   s.output.c_str(), s.elements, s.triangles, s.viewpoints, s.exposure, s.seconds);
+    }
+    if (sweep_cmd->parsed()) {
+      ss.plots = !no_plots;
+      ss.progress = !sweep_quiet;
+      for (int i = 0; i < argc; ++i) ss.command += std::string(i ? " " : "") + (i ? argv[i] : "walkrad");
+      if (ss.output.empty()) {
+        std::string name = ss.scene.substr(ss.scene.find_last_of('/') + 1);
+        ss.output = name.substr(0, name.find_last_of('.')) + ".sweep";
+      }
+      const SweepSummary s = run_sweep(ss);
+      std::printf("walkrad: swept %s: %zu bakes, reference %.1f s%s\n", s.output.c_str(), s.runs, s.reference_seconds,
+                  s.plotted ? ", plots and report.md written" : "");
     }
     if (convert_cmd->parsed()) {
       const auto start = std::chrono::steady_clock::now();

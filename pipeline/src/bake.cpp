@@ -20,6 +20,7 @@
 #include "walkrad/pipeline/chunk_optimizer.h"
 #include "walkrad/pipeline/chunking.h"
 #include "walkrad/pipeline/cluster_tree.h"
+#include "walkrad/pipeline/effect_plan.h"
 #include "walkrad/pipeline/contact_split.h"
 #include "walkrad/pipeline/energy_audit.h"
 #include "walkrad/pipeline/exposure.h"
@@ -116,7 +117,7 @@ json energy_json(const Vec3& emitted, const Vec3& absorbed) {
 }
 
 MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
-                           const Bounds& bounds, Phases& phases) {
+                           const Bounds& bounds, const EffectPlan& plan, Phases& phases) {
   phases.start("subdivide");
   const double element_size = s.element_size > 0 ? s.element_size : length(bounds.diagonal()) / 30.0;
   auto sub = std::make_shared<Subdivision>(subdivide_uniform(scene, element_size));
@@ -125,6 +126,7 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   phases.start("form factors");
   FormFactorSettings ffs;
   ffs.rays_per_point = std::max(1, s.rays_per_point);
+  ffs.visibility = plan.visibility.on;
   FormFactorCounts counts;
   FormFactorMatrix f;
   {
@@ -145,7 +147,19 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   solve.tolerance = s.tolerance;
   solve.max_iterations = s.max_iterations;
   SolveStats stats;
-  auto b = std::make_shared<std::vector<Vec3>>(solve_gauss_seidel(f, area, rho, emission, solve, stats));
+  auto b = std::make_shared<std::vector<Vec3>>();
+  if (plan.indirect.on) {
+    *b = solve_gauss_seidel(f, area, rho, emission, solve, stats);
+  } else {  // direct light only: B = E + ρ F E, one gather
+    b->resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      Vec3 h;
+      for (uint64_t k = f.row_start[i]; k < f.row_start[i + 1]; ++k) h += emission[f.column[k]] * f.value[k];
+      (*b)[i] = emission[i] + mul(rho[i], h);
+    }
+    stats.iterations = 1;
+    stats.converged = true;
+  }
   const EnergyBalance energy = energy_balance(f, area, rho, emission, *b);
   for (const Vec3& v : *b)
     if (!is_finite(v)) throw std::runtime_error("the solution is not finite (please report this scene)");
@@ -203,14 +217,14 @@ json error_per_segment(const Hierarchy& h, const std::vector<ViewHit>& hits, siz
 }
 
 MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
-                                const std::vector<Viewpoint>& views, Phases& phases) {
+                                const std::vector<Viewpoint>& views, const EffectPlan& plan, Phases& phases) {
   auto h = std::make_shared<Hierarchy>(scene, tree);
   uint64_t view_rays = 0;
   std::vector<ViewHit> hits;
   if (!views.empty()) {
     phases.start("importance");
     hits = cast_view_rays(views, rays, 128, 64, view_rays);
-    if (!s.view_independent) h->set_view_hits(hits);
+    if (plan.importance.on) h->set_view_hits(hits);
   }
   phases.start("solve");
   HierarchicalSettings hs;
@@ -219,6 +233,8 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.rays = std::max(1, s.rays_per_point) * 16;
   hs.tolerance = std::max(s.tolerance, 1e-6);
   hs.gauss_seidel = s.solver == "gauss-seidel";
+  hs.visibility = plan.visibility.on;
+  hs.indirect = plan.indirect.on;
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -274,7 +290,8 @@ json BakeSettings::to_json() const {
   return {{"method", method},     {"solver", solver},       {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
-          {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance}};
+          {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
+          {"effects", effects}};
 }
 
 BakeSummary bake(const BakeSettings& s) {
@@ -304,8 +321,10 @@ BakeSummary bake(const BakeSettings& s) {
   const Scene scene = split_contacts(input, split_stats);
   const RayScene rays(scene);
   const ClusterTree tree = build_cluster_tree(scene);
-  const MethodResult result = s.method == "classic" ? solve_classic(s, scene, rays, tree, bounds, phases)
-                                                    : solve_hierarchical(s, scene, rays, tree, views, phases);
+  const EffectPlan plan = plan_effects(scene, views, s.view_independent, s.method, s.effects);
+  if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
+  const MethodResult result = s.method == "classic" ? solve_classic(s, scene, rays, tree, bounds, plan, phases)
+                                                    : solve_hierarchical(s, scene, rays, tree, views, plan, phases);
 
   phases.start("exposure");
   uint64_t exposure_rays = 0;
@@ -346,6 +365,7 @@ BakeSummary bake(const BakeSettings& s) {
   manifest.exposure = exposure;
   manifest.viewpoints = views;
   manifest.settings = s.to_json();
+  manifest.effects = plan.to_json();
   for (size_t c = 0; c < cut.meshes.size(); ++c) {
     char name[32];
     std::snprintf(name, sizeof name, "chunk-%04zu.glb", c);
@@ -374,7 +394,7 @@ BakeSummary bake(const BakeSettings& s) {
   json report = {
       {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
-      {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings},
+      {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
   };
   write_json(out.path("report.json"), report);
   out.commit();

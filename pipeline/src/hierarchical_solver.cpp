@@ -196,7 +196,7 @@ class Solver {
     if (candidates.size() > 4) samples *= 2;
     if (candidates.size() > 64) samples *= 2;
     if (split) samples *= 2;
-    pending_.push_back({i, j, !candidates.empty(), samples});
+    pending_.push_back({i, j, s_.visibility && !candidates.empty(), samples});
   }
 
   // Later rounds: links whose oracle now exceeds ε (B and I have changed) are split.
@@ -425,7 +425,7 @@ class Solver {
     Vec3 H;
     double f = 0;
     for (const Link& l : n.links) {
-      H += h_[l.source].B * l.F;
+      H += (s_.indirect ? h_[l.source].B : h_[l.source].emission) * l.F;
       f += l.F;
     }
     n.H = H;

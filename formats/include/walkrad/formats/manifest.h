@@ -34,6 +34,7 @@ struct Manifest {
   std::vector<ChunkInfo> chunks;
   std::vector<Viewpoint> viewpoints; // the walkthrough the bake was made for, frame by frame
   nlohmann::json settings = nlohmann::json::object();  // the bake settings, as given
+  nlohmann::json effects = nlohmann::json::object();   // the effect plan: what was simulated and why
 };
 
 nlohmann::json manifest_to_json(const Manifest& m);

@@ -5,6 +5,7 @@
 // staged and swapped into place only when complete.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -31,6 +32,8 @@ struct BakeSettings {
   double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity
   int max_iterations = 10000;
   bool progress = true;     // progress lines on stderr
+  bool explain = false;     // print the effect plan (effect_plan.h) before solving
+  std::map<std::string, std::string> effects;  // effect plan overrides: name → "on" / "off"
 
   nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
 };

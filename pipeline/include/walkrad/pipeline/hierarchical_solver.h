@@ -41,6 +41,8 @@ struct HierarchicalSettings {
   int max_iterations = 64;    // refine + solve rounds
   int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
   bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
+  bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
+  bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)
 };
 
 struct IterationStats {

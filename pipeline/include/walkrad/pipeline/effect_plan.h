@@ -1,0 +1,42 @@
+// The effect plan (issue 10): before solving, decide from the scene and the walkthrough which light
+// transport a bake simulates, and say why, so that a bake pays only for effects the scene has:
+//   indirect    — only if a reflecting surface (ρ > 0) faces an emitter; otherwise B = E + one gather;
+//   visibility  — only if something can occlude: never in a convex enclosure (every polygon on or in
+//                 front of every other polygon's plane, so no segment between two of them crosses a third);
+//   importance  — only with viewpoints (and not --view-independent);
+//   clusters    — the hierarchical method's cluster links (always with it; none in the classic method).
+// Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
+// and manifest.json and report.json keep it.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "walkrad/formats/scene.h"
+
+namespace walkrad {
+
+struct Effect {
+  bool on = true;
+  std::string reason;
+  bool forced = false;  // by an override
+};
+
+struct EffectPlan {
+  Effect indirect, visibility, importance, clusters;
+  nlohmann::json to_json() const;
+  std::string explain() const;  // one line per effect
+};
+
+// overrides: effect name → "on" or "off" (InputError naming --effect for an unknown name or value).
+EffectPlan plan_effects(const Scene& scene, const std::vector<Viewpoint>& views, bool view_independent,
+                        const std::string& method, const std::map<std::string, std::string>& overrides);
+
+// Whether every polygon lies on or in front of every other polygon's plane (tolerance relative to the
+// scene's size): then nothing can stand between two surfaces.
+bool is_convex_enclosure(const Scene& scene);
+
+}  // namespace walkrad

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""walkrad sweep on the Cornell box with coarse settings (two ε per hierarchical method, two element
+sizes for the classic one): sweep.csv has every documented field and a row per bake; for every method
+the error against the path-traced reference falls as the setting gets finer, by more than the
+reference's own error bar; the plots, report.md and reference image are written. An unknown method is
+refused with exit code 2 and leaves no folder.
+
+Usage: test_sweep.py WALKRAD SOURCE_DIR WORK_DIR"""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+walkrad, source, work = sys.argv[1:4]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+scene = os.path.join(source, "examples/cornell-box/cornell-box.gltf")
+out = os.path.join(work, "cornell.sweep")
+subprocess.run([walkrad, "sweep", scene, "-o", out, "-q", "--epsilons", "1e-2,1e-4", "--element-sizes", "0.12,0.06",
+                "--points", "256", "--samples", "4096", "--image-width", "16", "--image-samples", "256"], check=True,
+               stdout=subprocess.DEVNULL)
+
+failures = []
+FIELDS = ["method", "epsilon", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays", "triangles",
+          "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max", "max_weighted", "bias", "image_pixels", "image_rms",
+          "image_rms_weighted", "reference_ci_rms", "reference_ci_rms_weighted", "reference_image_ci_rms",
+          "absorbed_over_emitted", "t_read", "t_prepare", "t_solve", "t_mesh", "t_write"]
+with open(os.path.join(out, "sweep.csv")) as f:
+    rows = list(csv.DictReader(f))
+missing = [c for c in FIELDS if c not in rows[0]]
+if missing:
+    failures.append(f"sweep.csv lacks {missing}")
+if len(rows) != 6:
+    failures.append(f"{len(rows)} rows, expected 6 (2 classic, 2 view-independent, 2 importance)")
+for r in rows:
+    for c in ["seconds", "elements", "links", "rays", "peak_rss_mib", "output_bytes", "points"]:
+        if not float(r[c]) > 0:
+            failures.append(f"{r['method']}: {c} = {r[c]}, expected > 0")
+
+for method, setting in [("classic", "element_size"), ("hierarchical", "epsilon"), ("importance", "epsilon")]:
+    runs = sorted((r for r in rows if r["method"] == method), key=lambda r: -float(r[setting]))  # coarse first
+    if len(runs) != 2:
+        failures.append(f"{method}: {len(runs)} runs")
+        continue
+    coarse, fine = float(runs[0]["rms_weighted"]), float(runs[1]["rms_weighted"])
+    bar = float(runs[0]["reference_ci_rms_weighted"])
+    print(f"{method}: error {100 * coarse:.2f}% → {100 * fine:.2f}% (reference error bar {100 * bar:.2f}%)")
+    if not coarse - fine > bar:
+        failures.append(f"{method}: the error does not fall by more than the reference's error bar as {setting} decreases "
+                        f"({coarse:.4f} → {fine:.4f}, bar {bar:.4f})")
+    if not float(runs[0]["image_rms_weighted"]) > float(runs[1]["image_rms_weighted"]):
+        failures.append(f"{method}: the image error does not fall as {setting} decreases")
+
+doc = json.load(open(os.path.join(out, "sweep.json")))
+if len(doc["runs"]) != 6 or doc["reference"]["samples"] != 4096:
+    failures.append("sweep.json does not hold the runs and the reference settings")
+for f in ["error_vs_time.png", "cost_vs_epsilon.png", "report.md", "reference-view-0.png", "reference-points.csv"]:
+    if not os.path.getsize(os.path.join(out, f)) > 0:
+        failures.append(f"{f} is missing or empty")
+if os.path.exists(os.path.join(out, "bakes")):
+    failures.append("the bakes were kept without --keep-bakes")
+
+bad = subprocess.run([walkrad, "sweep", scene, "-o", os.path.join(work, "bad.sweep"), "-q", "--methods", "radiosity"],
+                     capture_output=True, text=True)
+if bad.returncode != 2 or "radiosity" not in bad.stderr or os.path.exists(os.path.join(work, "bad.sweep")):
+    failures.append(f"an unknown method: exit {bad.returncode}, stderr {bad.stderr!r}")
+
+for f in failures:
+    print("FAIL:", f)
+sys.exit(1 if failures else 0)
