@@ -22,6 +22,7 @@
 #include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/effect_plan.h"
 #include "walkrad/pipeline/contact_split.h"
+#include "walkrad/pipeline/energy_audit.h"
 #include "walkrad/pipeline/exposure.h"
 #include "walkrad/pipeline/form_factor_matrix.h"
 #include "walkrad/pipeline/gauss_seidel.h"
@@ -108,7 +109,7 @@ struct MethodResult {
   std::function<Vec3(uint32_t, const Vec3&)> radiosity_at;
   std::function<SurfaceMesh(double)> mesh;
   double surface_exposure = 1.0;  // exposure from the surfaces themselves, for bakes without viewpoints
-  json counts, solver, energy;
+  json counts, solver, energy, audit;
 };
 
 json energy_json(const Vec3& emitted, const Vec3& absorbed) {
@@ -148,7 +149,7 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   SolveStats stats;
   auto b = std::make_shared<std::vector<Vec3>>();
   if (plan.indirect.on) {
-    *b = solve_gauss_seidel(f, rho, emission, solve, stats);
+    *b = solve_gauss_seidel(f, area, rho, emission, solve, stats);
   } else {  // direct light only: B = E + ρ F E, one gather
     b->resize(n);
     for (size_t i = 0; i < n; ++i) {
@@ -171,11 +172,13 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
     if (!scene.materials[sub->elements[i].shape.material].emits()) lum.push_back(luminance((*b)[i]) / kPi);
   r.surface_exposure = exposure_for(std::move(lum));
   r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
-              {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations}};
+              {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations},
+              {"corrections", stats.corrections}};
   r.solver = {{"element_size", element_size}, {"converged", stats.converged}, {"last_update", stats.last_update},
               {"tolerance", s.tolerance}};
   r.energy = energy_json(energy.emitted, energy.absorbed);
   r.energy["residual_w"] = vec_json(energy.residual);
+  r.audit = audit_json(audit_matrix(f, area, rho, emission, *b));
   return r;
 }
 
@@ -279,6 +282,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   const IterationStats& last = stats.iterations.back();
   r.energy = energy_json(last.emitted, last.absorbed);
   r.energy["residual_w"] = vec_json(last.residual);
+  r.audit = audit_json(audit_hierarchy(*h));
   return r;
 }
 }  // namespace
@@ -391,7 +395,7 @@ BakeSummary bake(const BakeSettings& s) {
   json report = {
       {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
-      {"energy", result.energy},    {"warnings", input.warnings}, {"effects", plan.to_json()},
+      {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
   };
   write_json(out.path("report.json"), report);
   out.commit();

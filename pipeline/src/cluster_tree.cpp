@@ -1,6 +1,9 @@
 #include "walkrad/pipeline/cluster_tree.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "walkrad/pipeline/rounding.h"
 
 namespace walkrad {
 
@@ -17,6 +20,10 @@ struct Builder {
   ClusterTree& tree;
   std::vector<Vec3> centroid;
   uint32_t max_leaf;
+  Vec3 origin;            // the scene's lower corner
+  double quantum = 0;     // positions and extents are compared in steps of this (see build)
+
+  long long steps(double x) const { return std::llround(x / quantum); }
 
   int32_t build(uint32_t first, uint32_t count) {
     const int32_t index = int32_t(tree.nodes.size());
@@ -32,12 +39,18 @@ struct Builder {
       cb.extend(centroid[p]);
     }
     if (count > max_leaf) {
+      // Extents and centroids compared in steps of 1e-9 of the scene (plus rounding at its
+      // coordinates), relative to its corner: a cube's equal sides, or centroids in one plane, stay
+      // tied when the scene is scaled or moved and its last bits change, so the tree (and with it
+      // the hierarchical solution) does not (docs/numerics.md).
       const Vec3 d = cb.diagonal();
-      const int axis = d.x >= d.y && d.x >= d.z ? 0 : (d.y >= d.z ? 1 : 2);
+      const long long dx = steps(d.x), dy = steps(d.y), dz = steps(d.z);
+      const int axis = dx >= dy && dx >= dz ? 0 : (dy >= dz ? 1 : 2);
       auto begin = tree.polygons.begin() + first, end = begin + count, mid = begin + count / 2;
       // Ties broken by polygon index: the tree does not depend on the sort's stability.
       std::nth_element(begin, mid, end, [&](uint32_t a, uint32_t b) {
-        return centroid[a][axis] < centroid[b][axis] || (centroid[a][axis] == centroid[b][axis] && a < b);
+        const long long ka = steps(centroid[a][axis] - origin[axis]), kb = steps(centroid[b][axis] - origin[axis]);
+        return ka < kb || (ka == kb && a < b);
       });
       node.child[0] = build(first, count / 2);
       node.child[1] = build(first + count / 2, count - count / 2);
@@ -59,6 +72,12 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
     tree.polygons[i] = i;
     tree.polygon_bounds[i] = polygon_bounds(scene.polygons[i]);
     b.centroid[i] = polygon_centroid(scene.polygons[i]);
+  }
+  Bounds all;
+  for (uint32_t i = 0; i < n; ++i) all.extend(tree.polygon_bounds[i]);
+  if (n > 0) {
+    b.origin = all.lo;
+    b.quantum = std::max(1e-9 * length(all.diagonal()) + rounding_at(all.lo) + rounding_at(all.hi), 1e-300);
   }
   tree.nodes.reserve(2 * (n / b.max_leaf + 1));
   if (n > 0) b.build(0, n);

@@ -126,7 +126,11 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
     // One cut per line (collinear edges: a row of books, two boxes side by side), longest first.
     for (Cut& c : cuts)
       if (c.n.x < 0 || (c.n.x == 0 && (c.n.y < 0 || (c.n.y == 0 && c.n.z < 0)))) { c.n = -c.n; c.d = -c.d; }
-    std::stable_sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) { return a.length > b.length; });
+    // Lengths compared in steps of the tolerance, ties kept in discovery order (tree order): edges of
+    // equal length (a square box's feet) differ in their last bits once the scene is scaled or moved,
+    // and must not swap (the pieces, their order and thus the bake would change; docs/numerics.md).
+    std::stable_sort(cuts.begin(), cuts.end(),
+                     [&](const Cut& a, const Cut& b) { return std::llround(a.length / tol) > std::llround(b.length / tol); });
     std::vector<Cut> unique;
     for (const Cut& c : cuts) {
       bool same = false;

@@ -8,6 +8,7 @@
 #include "walkrad/pipeline/formfactor.h"
 #include "walkrad/pipeline/sampling.h"
 #include "walkrad/pipeline/shaft.h"
+#include "walkrad/pipeline/rounding.h"
 
 namespace walkrad {
 
@@ -20,10 +21,12 @@ struct Row {
   std::vector<RayScene::Segment> recorded;  // only with FormFactorSettings::record
 };
 
-// True when some part of b lies strictly in front of a's plane.
+// True when some part of b lies strictly in front of a's plane (beyond rounding: coincident faces,
+// a lamp flush with a ceiling, stay out of each other's view wherever the scene lies).
 bool any_in_front(const Element& a, const Element& b) {
+  const double tol = 1e-12 * std::sqrt(a.area) + rounding_at(a.centroid);
   for (int k = 0; k < b.shape.count; ++k)
-    if (dot(b.shape.v[k] - a.centroid, a.normal) > 1e-12 * std::sqrt(a.area)) return true;
+    if (dot(b.shape.v[k] - a.centroid, a.normal) > tol) return true;
   return false;
 }
 

@@ -1,5 +1,6 @@
 // Form factors by Lambert's contour formula (formfactor.h).
 #include "walkrad/pipeline/formfactor.h"
+#include "walkrad/pipeline/rounding.h"
 
 #include <algorithm>
 #include <array>
@@ -64,8 +65,10 @@ std::vector<Vec3> clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v
 double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) {
   const Vec3 pn = polygon_area_normal(poly);
   const double plane_distance = dot(p - poly.v[0], pn);
-  // On the source's plane: the polygon subtends no solid angle (and the formula would mix ±β).
-  if (std::fabs(plane_distance) <= 1e-12 * dot(pn, pn)) return 0.0;
+  // On the source's plane (within 1e-12 of its size, or rounding): the polygon subtends no solid
+  // angle (and the formula would mix ±β).
+  const double pl = length(pn);
+  if (std::fabs(plane_distance) <= pl * (1e-12 * std::sqrt(pl) + rounding_at(p))) return 0.0;
 
   const std::vector<Vec3> v = clip_to_hemisphere(p, n, poly.v.data(), poly.count);
   if (v.size() < 3) return 0.0;

@@ -8,6 +8,7 @@
 #include "walkrad/pipeline/formfactor.h"
 #include "walkrad/pipeline/sampling.h"
 #include "walkrad/pipeline/shaft.h"
+#include "walkrad/pipeline/rounding.h"
 
 namespace walkrad {
 
@@ -38,7 +39,7 @@ double box_distance(const Bounds& a, const Bounds& b) {
 
 // True when every corner of box lies on or behind the element's plane: it can see nothing there.
 bool behind(const HNode& element, const Bounds& box) {
-  const double tol = 1e-9 * (element.radius + 1e-30);
+  const double tol = 1e-9 * (element.radius + 1e-30) + rounding_at(element.center);
   for (int c = 0; c < 8; ++c) {
     const Vec3 p(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z);
     if (dot(p - element.shape.v[0], element.normal) > tol) return false;

@@ -1,4 +1,7 @@
 #include "walkrad/pipeline/shaft.h"
+#include "walkrad/pipeline/rounding.h"
+
+#include <algorithm>
 
 #include <cmath>
 
@@ -40,9 +43,12 @@ Shaft::Shaft(const Bounds& a, const Bounds& b) {
 bool Shaft::overlaps(const Bounds& box) const {
   // Touching is not overlapping: a polygon that only touches the hull's boundary (the wall beside a
   // floor element) cannot block a segment between the two boxes' interiors, and ray end points are
-  // offset off their surfaces into the hull. The margin absorbs rounding at the scene's scale.
-  const double margin = 1e-9 * (1.0 + std::fabs(hull_.lo.x) + std::fabs(hull_.hi.x) + std::fabs(hull_.lo.y) +
-                                std::fabs(hull_.hi.y) + std::fabs(hull_.lo.z) + std::fabs(hull_.hi.z));
+  // offset off their surfaces into the hull. The margin absorbs rounding: 1e-9 of the hull's own size
+  // plus rounding at its coordinates (rounding.h), never an absolute length (a margin of
+  // 1e-9 × |coordinates| is 30% of a 2 mm scene placed 1e5 m away, and loses its occluders; see
+  // docs/numerics.md).
+  const double extent = std::max({hull_.hi.x - hull_.lo.x, hull_.hi.y - hull_.lo.y, hull_.hi.z - hull_.lo.z});
+  const double margin = 1e-9 * extent + rounding_at(hull_.lo) + rounding_at(hull_.hi);
   for (int k = 0; k < 3; ++k)
     if (box.hi[k] <= hull_.lo[k] + margin || box.lo[k] >= hull_.hi[k] - margin) {
       // A flat hull (two coplanar elements) has zero thickness: only a box crossing its plane counts.

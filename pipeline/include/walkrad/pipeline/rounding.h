@@ -1,0 +1,20 @@
+// How far apart two computed points may be and still be the same point: coordinates of magnitude m
+// carry rounding of about m × 2⁻⁵³ from every operation on them (a contact cut, a bilinear split), so
+// geometric tests ("on this plane?", "touching this box?") need a slack that grows with m as well as
+// one relative to the objects' own size. 256 ulps: far above what a few operations accumulate, and
+// still 1e-8 m at 1e5 m from the origin (docs/numerics.md, "Scale and position").
+#pragma once
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include "walkrad/formats/vec3.h"
+
+namespace walkrad {
+
+inline double rounding_at(const Vec3& p) {
+  return 256 * DBL_EPSILON * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+}
+
+}  // namespace walkrad

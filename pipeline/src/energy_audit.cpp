@@ -1,0 +1,68 @@
+#include "walkrad/pipeline/energy_audit.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace walkrad {
+
+double EnergyAudit::imbalance() const {
+  const Vec3 miss = emitted - absorbed - residual();
+  double worst = 0;
+  for (int c = 0; c < 3; ++c)
+    if (emitted[c] > 0) worst = std::max(worst, std::fabs(miss[c]) / emitted[c]);
+  return worst;
+}
+
+void add_to_audit(EnergyAudit& audit, const AuditElement& e) {
+  audit.emitted += e.emission * e.area;
+  audit.absorbed += mul(Vec3(1, 1, 1) - e.rho, e.H) * e.area;
+  audit.escaped += e.B * (e.area * (1.0 - e.row_sum));
+  audit.unconverged += (e.emission + mul(e.rho, e.H) - e.B) * e.area;
+}
+
+EnergyAudit audit_matrix(const FormFactorMatrix& f, const std::vector<double>& area, const std::vector<Vec3>& reflectance,
+                         const std::vector<Vec3>& emission, const std::vector<Vec3>& radiosity) {
+  EnergyAudit audit;
+  for (size_t i = 0; i < f.rows(); ++i) {
+    AuditElement e{area[i], reflectance[i], emission[i], radiosity[i], {}, 0.0};
+    for (uint64_t k = f.row_start[i]; k < f.row_start[i + 1]; ++k) {
+      e.H += radiosity[f.column[k]] * f.value[k];
+      e.row_sum += f.value[k];
+    }
+    add_to_audit(audit, e);
+  }
+  return audit;
+}
+
+namespace {
+
+void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double down_sum, EnergyAudit& audit) {
+  const HNode& n = h[i];
+  for (const Link& l : n.links) {
+    down += h[l.source].B * l.F;
+    down_sum += l.F;
+  }
+  if (n.child_count == 0) {
+    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down, down_sum});
+    return;
+  }
+  for (uint32_t k = 0; k < n.child_count; ++k) audit_node(h, h.child(n, k), down, down_sum, audit);
+}
+
+}  // namespace
+
+EnergyAudit audit_hierarchy(const Hierarchy& h) {
+  EnergyAudit audit;
+  if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, 0.0, audit);
+  return audit;
+}
+
+nlohmann::json audit_json(const EnergyAudit& a, double bound) {
+  auto v = [](const Vec3& x) { return nlohmann::json::array({x.x, x.y, x.z}); };
+  return {{"emitted_w", v(a.emitted)},         {"absorbed_w", v(a.absorbed)},   {"residual_w", v(a.residual())},
+          {"escaped_w", v(a.escaped)},         {"unconverged_w", v(a.unconverged)},
+          {"imbalance", a.imbalance()},        {"bound", bound},
+          {"balanced", a.imbalance() <= bound}};
+}
+
+}  // namespace walkrad
