@@ -36,24 +36,29 @@ EnergyAudit audit_matrix(const FormFactorMatrix& f, const std::vector<double>& a
 
 namespace {
 
-void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double down_sum, EnergyAudit& audit) {
+// The hierarchy's transfer as the solver runs it: irradiance gathered from what sources send (Bt), and
+// what escapes counted where it leaves, per leaf: B A (1 − the fraction its links and its ancestors'
+// carry away, times its send factor), so that the balance closes whatever the links' distribution.
+void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double carried, const std::vector<double>& sent,
+                EnergyAudit& audit) {
   const HNode& n = h[i];
-  for (const Link& l : n.links) {
-    down += h[l.source].B * l.F;
-    down_sum += l.F;
-  }
+  for (const Link& l : n.links) down += h[l.source].Bt * l.F;
+  carried += sent[i];
   if (n.child_count == 0) {
-    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down, down_sum});
+    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down, carried * n.send});
     return;
   }
-  for (uint32_t k = 0; k < n.child_count; ++k) audit_node(h, h.child(n, k), down, down_sum, audit);
+  for (uint32_t k = 0; k < n.child_count; ++k) audit_node(h, h.child(n, k), down, carried, sent, audit);
 }
 
 }  // namespace
 
 EnergyAudit audit_hierarchy(const Hierarchy& h) {
   EnergyAudit audit;
-  if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, 0.0, audit);
+  std::vector<double> sent(h.nodes().size(), 0.0);  // Σ F A_receiver / A_source over links from the node
+  for (const HNode& n : h.nodes())
+    for (const Link& l : n.links) sent[l.source] += l.F * n.area / h[l.source].area;
+  if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, 0.0, sent, audit);
   return audit;
 }
 

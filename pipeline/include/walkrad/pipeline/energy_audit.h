@@ -34,7 +34,7 @@ struct EnergyAudit {
 struct AuditElement {
   double area = 0;
   Vec3 rho, emission, B, H;
-  double row_sum = 0;
+  double row_sum = 0;  // the fraction of its radiosity that its links carry away (matrix: its row sum, by reciprocity)
 };
 void add_to_audit(EnergyAudit& audit, const AuditElement& e);
 
