@@ -63,11 +63,13 @@ void write_json(const std::string& path, const json& j) {
   if (!out) throw OutputError(path + ": cannot write");
 }
 
-// Phase times for report.json.
+// Phase times for report.json; the caps are checked as each phase starts (bake_caps.h).
 class Phases {
  public:
-  explicit Phases(bool progress) : progress_(progress) {}
+  Phases(bool progress, const CapWatch& caps) : progress_(progress), caps_(caps) {}
+  void check(const std::string& where) const { caps_.check(where); }
   void start(const std::string& name) {
+    caps_.check("before " + name);
     finish();
     name_ = name;
     t0_ = Clock::now();
@@ -82,6 +84,7 @@ class Phases {
 
  private:
   bool progress_;
+  const CapWatch& caps_;
   std::string name_;
   Clock::time_point t0_;
   json phases_ = json::array();
@@ -126,7 +129,10 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   FormFactorMatrix f;
   {
     Progress progress("form factors", n, s.progress);
-    f = compute_form_factors(*sub, &rays, &tree, ffs, counts, [&](size_t done) { progress.update(done); });
+    f = compute_form_factors(*sub, &rays, &tree, ffs, counts, [&](size_t done) {
+      phases.check("form factors");
+      progress.update(done);
+    });
   }
 
   phases.start("solve");
@@ -217,6 +223,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
+    phases.check("solve round " + std::to_string(stats.iterations.size()));
     if (!s.progress) return;
     std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e, %.1f s\n",
                  stats.iterations.size(), static_cast<unsigned long long>(it.links),
@@ -270,7 +277,8 @@ BakeSummary bake(const BakeSettings& s) {
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
 
-  Phases phases(s.progress);
+  const CapWatch caps(s.caps, s.scene);
+  Phases phases(s.progress, caps);
   phases.start("read");
   Scene input = read_scene(s.scene);
   if (const uint64_t copies = remove_duplicate_polygons(input))

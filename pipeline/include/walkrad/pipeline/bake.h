@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "walkrad/pipeline/bake_caps.h"
+
 namespace walkrad {
 
 struct BakeSettings {
@@ -27,6 +29,7 @@ struct BakeSettings {
   double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity
   int max_iterations = 10000;
   bool progress = true;     // progress lines on stderr
+  BakeCaps caps;            // time and memory caps (not recorded: they do not change the result)
 
   nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
 };
