@@ -184,7 +184,9 @@ struct Reader {
           const uint32_t i = idx[t + k];
           if (size_t(i) * 3 + 2 >= p.size()) throw InputError(file, place, "index " + std::to_string(i) + " out of range");
           tri.v[k] = transform_point(world, {p[i * 3], p[i * 3 + 1], p[i * 3 + 2]});
-          if (!is_finite(tri.v[k])) throw InputError(file, place, "vertex " + std::to_string(i) + " is not finite");
+          if (!is_finite(tri.v[k]))
+            throw InputError(file, place + ": accessors[" + std::to_string(pos->second) + "] (POSITION)",
+                             "vertex " + std::to_string(i) + " is not finite (after the node transforms)");
         }
         if (polygon_area(tri) <= 0) { ++scene.dropped_degenerate; continue; }
         Polygon quad;
