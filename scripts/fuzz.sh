@@ -12,6 +12,7 @@ shift || true
 targets=("$@")
 ((${#targets[@]})) || targets=(gltf chunk walkthrough manifest mgf)
 build=${WALKRAD_FUZZ_BUILD_DIR:-$here/build-fuzz}
+"$here/scripts/install-deps.sh" --fuzz
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   CC=clang CXX=clang++ cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWALKRAD_FUZZ=ON \
