@@ -184,9 +184,10 @@ struct Reader {
           const uint32_t i = idx[t + k];
           if (size_t(i) * 3 + 2 >= p.size()) throw InputError(file, place, "index " + std::to_string(i) + " out of range");
           tri.v[k] = transform_point(world, {p[i * 3], p[i * 3 + 1], p[i * 3 + 2]});
-          if (!is_finite(tri.v[k]))
+          if (!is_valid_vertex(tri.v[k]))
             throw InputError(file, place + ": accessors[" + std::to_string(pos->second) + "] (POSITION)",
-                             "vertex " + std::to_string(i) + " is not finite (after the node transforms)");
+                             "vertex " + std::to_string(i) + (is_finite(tri.v[k]) ? " lies beyond ±1e9 m" : " is not finite") +
+                                 " (after the node transforms)");
         }
         if (polygon_area(tri) <= 0) { ++scene.dropped_degenerate; continue; }
         Polygon quad;

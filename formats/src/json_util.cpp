@@ -12,6 +12,9 @@ json parse_file(const std::string& path) {
     return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
     throw InputError(path, "byte " + std::to_string(e.byte), "not valid JSON");
+  } catch (const json::out_of_range&) {
+    // A number too large for a double (e.g. 1e99999): nlohmann reports it as out_of_range 406.
+    throw InputError(path, "", "not valid JSON: a number is out of range");
   }
 }
 

@@ -471,7 +471,7 @@ class Reader {
       w.reserve(local.size());
       for (const Vec3& p : local) {
         w.push_back(xf.point(p));
-        if (!is_finite(w.back())) fail(keyword() + ": a vertex is not finite after the transform");
+        if (!is_valid_vertex(w.back())) fail(keyword() + ": a vertex is not finite or lies beyond ±1e9 m after the transform");
       }
       if (mirrored) std::reverse(w.begin(), w.end());  // a mirror turns the right-hand rule around
       const mgf::SplitResult s = mgf::split_face(w);
