@@ -1,8 +1,10 @@
 #include "gltf_access.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
+#include "gltf_draco_check.h"
 #include "input_limits.h"
 #include "walkrad/formats/error.h"
 
@@ -143,6 +145,10 @@ tinygltf::Model load(const std::string& path, bool load_images) {
       input_limits::read_file(path, binary ? input_limits::kMaxBinaryBytes : input_limits::kMaxJsonBytes, "glTF file");
   const auto json = binary ? check_glb(bytes, path) : std::pair<size_t, size_t>{0, bytes.size()};
   input_limits::check_json_depth(reinterpret_cast<const char*>(bytes.data()) + json.first, json.second, path);
+  const size_t bin_at = json.first + json.second + 8;  // a GLB's BIN chunk data, when there is one
+  const bool has_bin = binary && bin_at <= bytes.size();
+  check_draco(reinterpret_cast<const char*>(bytes.data()) + json.first, json.second, has_bin ? bytes.data() + bin_at : nullptr,
+              has_bin ? std::min<size_t>(bytes.size() - bin_at, u32(bytes, bin_at - 8)) : 0, path);
 
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_resource, &tinygltf::WriteWholeFile,

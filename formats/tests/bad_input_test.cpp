@@ -120,6 +120,24 @@ TEST_F(BadInput, ChunkLengthsAreCheckedToo) {
   expect_refused([&] { read_chunk(c); }, c, kExitBadInput, {"GLB header"});
 }
 
+// Found by the fuzzer: tinygltf indexes a Draco primitive's bufferView unchecked; refused before.
+TEST_F(BadInput, DracoReferencesAreCheckedBeforeTinygltf) {
+  const std::string crasher = std::string(WALKRAD_SOURCE_DIR) + "/tests/fuzz/crashers/chunk/draco-missing-bufferview.glb";
+  expect_refused([&] { read_chunk(crasher); }, crasher, kExitBadInput,
+                 {"meshes[0].primitives[0].KHR_draco_mesh_compression", "bufferView does not exist"});
+  // A Draco attribute id that the compressed mesh does not have (tinygltf would dereference null).
+  const Bytes draco = read_bytes(kSeeds + "chunk/quad-draco.glb");
+  std::string text(draco.begin() + 20, draco.begin() + 20 + u32_at(draco, 12));
+  const std::string key = "KHR_draco_mesh_compression\":{\"attributes\":{\"COLOR_0\":";
+  const size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos) << text;
+  text[at + key.size()] = '7';
+  Bytes bad = draco;
+  std::copy(text.begin(), text.end(), bad.begin() + 20);
+  const std::string p = write("draco-id.glb", bad);
+  expect_refused([&] { read_chunk(p); }, p, kExitBadInput, {"attributes/COLOR_0", "no Draco attribute with id 7"});
+}
+
 TEST_F(BadInput, DeepJsonIsALimit) {
   const std::string deep = "{\"asset\":{\"version\":\"2.0\"},\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
   const std::string g = write("deep.gltf", deep);
