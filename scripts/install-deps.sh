@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what walkrad's build, tests and examples need, from Debian packages and the npm registry.
 # Idempotent: it asks apt and npm only for what is missing, and does nothing when all is present.
+# --fuzz: also clang and its libFuzzer runtime, for scripts/fuzz.sh (the CI only replays, with gcc).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
@@ -11,6 +12,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib
   libglfw3-dev libepoxy-dev libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 xvfb xauth
 )
+
+[ "${1:-}" = --fuzz ] && packages+=(clang libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

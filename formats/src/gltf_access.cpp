@@ -1,9 +1,14 @@
 #include "gltf_access.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
+#include "gltf_draco_check.h"
+#include "input_limits.h"
 #include "walkrad/formats/error.h"
+
+#include <stb_image.h>
 
 namespace walkrad::gltf_access {
 
@@ -76,17 +81,88 @@ void append_indices(const tinygltf::Model& m, int accessor, uint32_t offset, std
   }
 }
 
+namespace {
+
+constexpr uint32_t kGlbMagic = 0x46546C67, kGlbJson = 0x4E4F534A, kGlbBin = 0x004E4942;
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 26;  // 8192 × 8192: decoded before it is averaged
+
+uint32_t u32(const std::vector<unsigned char>& b, size_t at) {
+  return uint32_t(b[at]) | uint32_t(b[at + 1]) << 8 | uint32_t(b[at + 2]) << 16 | uint32_t(b[at + 3]) << 24;
+}
+
+// The GLB layout (glTF 2.0 §4.4) checked against the real file size before tinygltf reads a length
+// from it: header, a JSON chunk, an optional BIN chunk, nothing past the declared length.
+// Returns the JSON chunk's span.
+std::pair<size_t, size_t> check_glb(const std::vector<unsigned char>& b, const std::string& file) {
+  const size_t size = b.size();
+  if (size < 20) throw InputError(file, "GLB header", "file of " + std::to_string(size) + " bytes is shorter than a GLB header and chunk header (20)");
+  if (u32(b, 0) != kGlbMagic) throw InputError(file, "GLB header", "magic is not \"glTF\"");
+  if (u32(b, 4) != 2) throw InputError(file, "GLB header", "version " + std::to_string(u32(b, 4)) + " (walkrad reads GLB version 2)", kExitMissingFeature);
+  if (u32(b, 8) != size)
+    throw InputError(file, "GLB header", "declared length " + std::to_string(u32(b, 8)) + " differs from the file size " + std::to_string(size));
+  const uint64_t json_length = u32(b, 12);
+  if (u32(b, 16) != kGlbJson) throw InputError(file, "GLB chunk 0", "the first chunk is not JSON");
+  if (json_length == 0 || 20 + json_length > size)
+    throw InputError(file, "GLB chunk 0", "JSON length " + std::to_string(json_length) + " does not fit in the file (" + std::to_string(size) + " bytes)");
+  const uint64_t rest = size - 20 - json_length;
+  if (rest > 0) {
+    if (rest < 8) throw InputError(file, "GLB chunk 1", "truncated chunk header");
+    const uint64_t bin_length = u32(b, size_t(20 + json_length));
+    if (u32(b, size_t(24 + json_length)) != kGlbBin) throw InputError(file, "GLB chunk 1", "the second chunk is not BIN");
+    if (bin_length + 8 > rest)
+      throw InputError(file, "GLB chunk 1", "BIN length " + std::to_string(bin_length) + " exceeds the " + std::to_string(rest - 8) + " bytes left in the file");
+  }
+  return {20, size_t(json_length)};
+}
+
+// tinygltf's file reads (external buffers and images) with the same rules as the scene file.
+// A refusal names the glTF file and the resource's path.
+bool read_resource(std::vector<unsigned char>* out, std::string*, const std::string& path, void* gltf) {
+  try {
+    *out = input_limits::read_file(path, input_limits::kMaxBinaryBytes, "file");
+  } catch (const InputError& e) {
+    throw InputError(*static_cast<const std::string*>(gltf), "resource '" + path + "'", e.message(), e.code());
+  }
+  return true;
+}
+
+// Images are decoded to be averaged: refuse sizes whose decoding would need gigabytes.
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int w, int h,
+                const unsigned char* bytes, int size, void* file) {
+  int x = 0, y = 0, comp = 0;
+  if (stbi_info_from_memory(bytes, size, &x, &y, &comp) && uint64_t(x) * uint64_t(y) > kMaxImagePixels)
+    throw InputError(*static_cast<const std::string*>(file), "images[" + std::to_string(index) + "]",
+                     std::to_string(x) + " × " + std::to_string(y) + " pixels exceed the limit of " +
+                     std::to_string(kMaxImagePixels) + " pixels", kExitLimitReached);
+  return tinygltf::LoadImageData(image, index, err, warn, w, h, bytes, size, nullptr);
+}
+
+}  // namespace
+
 tinygltf::Model load(const std::string& path, bool load_images) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "", "cannot open file (missing or not a regular file)");
+  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  const std::vector<unsigned char> bytes =
+      input_limits::read_file(path, binary ? input_limits::kMaxBinaryBytes : input_limits::kMaxJsonBytes, "glTF file");
+  const auto json = binary ? check_glb(bytes, path) : std::pair<size_t, size_t>{0, bytes.size()};
+  input_limits::check_json_depth(reinterpret_cast<const char*>(bytes.data()) + json.first, json.second, path);
+  const size_t bin_at = json.first + json.second + 8;  // a GLB's BIN chunk data, when there is one
+  const bool has_bin = binary && bin_at <= bytes.size();
+  check_draco(reinterpret_cast<const char*>(bytes.data()) + json.first, json.second, has_bin ? bytes.data() + bin_at : nullptr,
+              has_bin ? std::min<size_t>(bytes.size() - bin_at, u32(bytes, bin_at - 8)) : 0, path);
+
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_resource, &tinygltf::WriteWholeFile,
+                          const_cast<std::string*>(&path)});
   if (!load_images)
     loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
+  else
+    loader.SetImageLoader(&load_image, const_cast<std::string*>(&path));
   tinygltf::Model model;
   std::string err, warn;
-  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                      unsigned(bytes.size()), base_dir);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     throw InputError(path, "", err.empty() ? "not a readable glTF file" : "invalid glTF: " + err);

@@ -14,6 +14,9 @@ namespace {
 
 using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
 
+constexpr int kMaxNodeDepth = 256;                 // nodes are visited recursively
+constexpr size_t kMaxGltfPolygons = 50'000'000;  // as MgfOptions::max_polygons (kExitLimitReached past it)
+
 Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
 
 Mat4 multiply(const Mat4& a, const Mat4& b) {
@@ -135,7 +138,7 @@ struct Reader {
   Scene& scene;
   std::vector<int> material_map;  // glTF material index → scene material (-1: default)
   int default_material = -1;
-  std::vector<bool> on_path;      // nodes on the current traversal path (cycle check)
+  std::vector<bool> visited;      // glTF 2.0 §3.5.3: nodes form disjoint strict trees (no cycles, one parent)
 
   uint32_t material_for(int gltf_material) {
     if (gltf_material >= 0 && gltf_material < int(model.materials.size())) return uint32_t(material_map[gltf_material]);
@@ -165,6 +168,8 @@ struct Reader {
       if (prim.indices >= 0) gltf_access::append_indices(model, prim.indices, 0, idx, file);
       else for (uint32_t i = 0; i < p.size() / 3; ++i) idx.push_back(i);
       if (idx.size() % 3) throw InputError(file, place, "index count is not a multiple of 3");
+      if (scene.polygons.size() + idx.size() / 3 > kMaxGltfPolygons)
+        throw InputError(file, place, "the scene has more than " + std::to_string(kMaxGltfPolygons) + " triangles", kExitLimitReached);
       const uint32_t material = material_for(prim.material);
 
       Polygon pending;
@@ -179,7 +184,10 @@ struct Reader {
           const uint32_t i = idx[t + k];
           if (size_t(i) * 3 + 2 >= p.size()) throw InputError(file, place, "index " + std::to_string(i) + " out of range");
           tri.v[k] = transform_point(world, {p[i * 3], p[i * 3 + 1], p[i * 3 + 2]});
-          if (!is_finite(tri.v[k])) throw InputError(file, place, "vertex " + std::to_string(i) + " is not finite");
+          if (!is_valid_vertex(tri.v[k]))
+            throw InputError(file, place + ": accessors[" + std::to_string(pos->second) + "] (POSITION)",
+                             "vertex " + std::to_string(i) + (is_finite(tri.v[k]) ? " lies beyond ±1e9 m" : " is not finite") +
+                                 " (after the node transforms)");
         }
         if (polygon_area(tri) <= 0) { ++scene.dropped_degenerate; continue; }
         Polygon quad;
@@ -210,10 +218,13 @@ struct Reader {
     scene.cameras.push_back(v);
   }
 
-  void visit(int node, const Mat4& parent) {
+  void visit(int node, const Mat4& parent, int depth) {
     if (node < 0 || node >= int(model.nodes.size())) throw InputError(file, "nodes", "node index " + std::to_string(node) + " out of range");
-    if (on_path[node]) throw InputError(file, "nodes[" + std::to_string(node) + "]", "node hierarchy has a cycle");
-    on_path[node] = true;
+    if (visited[node])
+      throw InputError(file, "nodes[" + std::to_string(node) + "]", "node is reached twice: the hierarchy has a cycle or a node with two parents (glTF 2.0 §3.5.3)");
+    if (depth > kMaxNodeDepth)
+      throw InputError(file, "nodes[" + std::to_string(node) + "]", "node hierarchy deeper than " + std::to_string(kMaxNodeDepth), kExitLimitReached);
+    visited[node] = true;
     const tinygltf::Node& n = model.nodes[node];
     const Mat4 world = multiply(parent, local_matrix(n));
     if (n.mesh >= 0) {
@@ -221,8 +232,7 @@ struct Reader {
       add_mesh(n.mesh, world);
     }
     if (n.camera >= 0 && n.camera < int(model.cameras.size())) add_camera(n.camera, world, node);
-    for (int child : n.children) visit(child, world);
-    on_path[node] = false;
+    for (int child : n.children) visit(child, world, depth + 1);
   }
 };
 
@@ -248,7 +258,7 @@ Scene read_gltf(const std::string& path) {
       for (int c : n.children) if (c >= 0 && c < int(child.size())) child[c] = true;
     for (size_t i = 0; i < model.nodes.size(); ++i) if (!child[i]) roots.push_back(int(i));
   }
-  for (int root : roots) r.visit(root, identity());
+  for (int root : roots) r.visit(root, identity(), 0);
   if (scene.dropped_degenerate)
     scene.warnings.push_back(std::to_string(scene.dropped_degenerate) + " zero-area triangles dropped");
   if (scene.polygons.empty()) throw InputError(path, "", "the scene has no triangles");

@@ -1,21 +1,20 @@
 #include "json_util.h"
 
-#include <fstream>
-#include <sstream>
-
+#include "input_limits.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad::json_util {
 
 json parse_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  const std::vector<unsigned char> text = input_limits::read_file(path, input_limits::kMaxJsonBytes, "JSON file");
+  input_limits::check_json_depth(reinterpret_cast<const char*>(text.data()), text.size(), path);
   try {
-    return json::parse(ss.str());
+    return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
     throw InputError(path, "byte " + std::to_string(e.byte), "not valid JSON");
+  } catch (const json::out_of_range&) {
+    // A number too large for a double (e.g. 1e99999): nlohmann reports it as out_of_range 406.
+    throw InputError(path, "", "not valid JSON: a number is out of range");
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "mgf_colour.h"
 #include "mgf_geometry.h"
+#include "input_limits.h"
 #include "mgf_transform.h"
 #include "walkrad/formats/error.h"
 
@@ -43,6 +44,9 @@ struct ParsedFile {
 
 // Lines joined at a trailing backslash, split at white space; comments (#) dropped.
 std::unique_ptr<ParsedFile> load(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return nullptr;  // a device or FIFO could block or never end
+  input_limits::check_regular_file(path, input_limits::kMaxBinaryBytes, "MGF file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return nullptr;
   auto file = std::make_unique<ParsedFile>();
@@ -465,7 +469,10 @@ class Reader {
     for (const Loop& local : faces) {
       Loop w;
       w.reserve(local.size());
-      for (const Vec3& p : local) w.push_back(xf.point(p));
+      for (const Vec3& p : local) {
+        w.push_back(xf.point(p));
+        if (!is_valid_vertex(w.back())) fail(keyword() + ": a vertex is not finite or lies beyond ±1e9 m after the transform");
+      }
       if (mirrored) std::reverse(w.begin(), w.end());  // a mirror turns the right-hand rule around
       const mgf::SplitResult s = mgf::split_face(w);
       if (s.degenerate) ++scene_.dropped_degenerate;

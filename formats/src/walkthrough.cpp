@@ -22,6 +22,8 @@ Viewpoint make_viewpoint(std::string name, Vec3 position, Vec3 direction, Vec3 u
   v.name = std::move(name);
   v.position = position;
   v.forward = normalize(direction);
+  if (!is_finite(position) || !is_finite(direction) || !is_finite(up))
+    throw InputError(file, pointer, "position, direction and up must be finite (after interpolation)");
   if (length(direction) <= 0) throw InputError(file, pointer, "view direction has zero length (target equals position)");
   const Vec3 right = cross(v.forward, up);
   if (length(right) < 1e-9 * std::max(1.0, length(up)))
@@ -70,9 +72,9 @@ std::vector<Viewpoint> sample_path(const json& path, const std::string& file) {
 
   std::vector<Viewpoint> out;
   const double t0 = kf.front().time, t1 = kf.back().time;
+  size_t s = 0;  // the segment: times grow with f, so it only moves forward (linear, not frames × keys)
   for (uint64_t f = 0; f < frames; ++f) {
     const double t = frames == 1 ? t0 : t0 + (t1 - t0) * double(f) / double(frames - 1);
-    size_t s = 0;
     while (s + 2 < kf.size() && kf[s + 1].time <= t) ++s;
     Vec3 pos = kf[s].position, tgt = kf[s].target;
     if (kf.size() > 1) {

@@ -124,3 +124,36 @@ TEST(Chunk, RefusesEveryTruncation) {
 
 }  // namespace
 }  // namespace walkrad
+
+namespace walkrad {
+namespace {
+
+// A Draco-compressed chunk (KHR_draco_mesh_compression, written by tests/fuzz/make_draco_seed.cpp):
+// decoded to the same quad as the plain one, corner for corner.
+TEST(Chunk, DecodesDraco) {
+  const ChunkMesh m = read_chunk(std::string(WALKRAD_SOURCE_DIR) + "/tests/fuzz/corpus/chunk/quad-draco.glb");
+  ASSERT_EQ(m.vertex_count(), 4u);
+  ASSERT_EQ(m.triangle_count(), 2u);
+  const Bounds b = m.bounds();
+  EXPECT_EQ(b.lo, Vec3(0, 0, 0));
+  EXPECT_EQ(b.hi, Vec3(1, 1, 0));
+  double area = 0;
+  for (size_t t = 0; t < 2; ++t) {
+    Vec3 v[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t i = m.indices[t * 3 + k];
+      v[k] = Vec3(m.positions[i * 3], m.positions[i * 3 + 1], m.positions[i * 3 + 2]);
+      EXPECT_EQ(m.normals[i * 3 + 2], 1.0f);
+      // The seed's colours: red, green, blue, white at corners (0,0), (1,0), (1,1), (0,1).
+      const float expected[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+      const int corner = v[k].y < 0.5 ? (v[k].x < 0.5 ? 0 : 1) : (v[k].x > 0.5 ? 2 : 3);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(m.colors[i * 3 + c], expected[corner][c]);
+    }
+    area += 0.5 * length(cross(v[1] - v[0], v[2] - v[0]));
+    EXPECT_GT(cross(v[1] - v[0], v[2] - v[0]).z, 0);  // counter-clockwise seen from +z
+  }
+  EXPECT_DOUBLE_EQ(area, 1.0);
+}
+
+}  // namespace
+}  // namespace walkrad

@@ -58,6 +58,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-9, 1.0))->capture_default_str();
   bake_cmd->add_option("--threads", bs.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
   bake_cmd->add_option("--tolerance", bs.tolerance, "solver stop: largest relative update")->capture_default_str();
+  bake_cmd->add_option("--max-seconds", bs.caps.max_seconds,
+                       "stop with exit code 6, writing nothing, when the bake runs longer (checked between phases and solve rounds)")
+      ->check(CLI::NonNegativeNumber);
+  bake_cmd->add_option("--max-memory-mb", bs.caps.max_memory_mb,
+                       "stop with exit code 6, writing nothing, when peak memory passes this many MiB (checked as --max-seconds)");
   bool quiet = false;
   bake_cmd->add_flag("-q,--quiet", quiet, "no progress lines");
 

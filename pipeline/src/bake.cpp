@@ -67,11 +67,13 @@ void write_json(const std::string& path, const json& j) {
   if (!out) throw OutputError(path + ": cannot write");
 }
 
-// Phase times for report.json.
+// Phase times for report.json; the caps are checked as each phase starts (bake_caps.h).
 class Phases {
  public:
-  explicit Phases(bool progress) : progress_(progress) {}
+  Phases(bool progress, const CapWatch& caps) : progress_(progress), caps_(caps) {}
+  void check(const std::string& where) const { caps_.check(where); }
   void start(const std::string& name) {
+    caps_.check("before " + name);
     finish();
     name_ = name;
     t0_ = Clock::now();
@@ -86,6 +88,7 @@ class Phases {
 
  private:
   bool progress_;
+  const CapWatch& caps_;
   std::string name_;
   Clock::time_point t0_;
   json phases_ = json::array();
@@ -131,7 +134,10 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   FormFactorMatrix f;
   {
     Progress progress("form factors", n, s.progress);
-    f = compute_form_factors(*sub, &rays, &tree, ffs, counts, [&](size_t done) { progress.update(done); });
+    f = compute_form_factors(*sub, &rays, &tree, ffs, counts, [&](size_t done) {
+      phases.check("form factors");
+      progress.update(done);
+    });
   }
 
   phases.start("solve");
@@ -241,6 +247,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   auto round_start = t0;
   uint64_t previous_new = 0;
   solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
+    phases.check("solve round " + std::to_string(stats.iterations.size()));
     const auto now = Clock::now();
     const double left = refinement_seconds_left(previous_new, it.new_links, std::chrono::duration<double>(now - round_start).count());
     previous_new = it.new_links;
@@ -303,7 +310,8 @@ BakeSummary bake(const BakeSettings& s) {
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
 
-  Phases phases(s.progress);
+  const CapWatch caps(s.caps, s.scene);
+  Phases phases(s.progress, caps);
   phases.start("read");
   Scene input = read_scene(s.scene);
   if (const uint64_t copies = remove_duplicate_polygons(input))

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,6 +30,13 @@ struct Polygon {
   uint32_t material = 0;
   uint32_t source = 0;  // the input primitive it came from (glTF mesh index, MGF face line), for messages
 };
+
+// Readers refuse vertices beyond ±kMaxCoordinate metres (a million km): past it, areas and form
+// factors lose all precision long before they overflow to infinity.
+constexpr double kMaxCoordinate = 1e9;
+inline bool is_valid_vertex(const Vec3& v) {
+  return is_finite(v) && std::fabs(v.x) <= kMaxCoordinate && std::fabs(v.y) <= kMaxCoordinate && std::fabs(v.z) <= kMaxCoordinate;
+}
 
 // Unnormalised normal: its length is twice the area (Newell's method, robust for quads).
 Vec3 polygon_area_normal(const Polygon& p);

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "walkrad/pipeline/bake_caps.h"
+
 namespace walkrad {
 
 struct BakeSettings {
@@ -34,6 +36,7 @@ struct BakeSettings {
   bool progress = true;     // progress lines on stderr
   bool explain = false;     // print the effect plan (effect_plan.h) before solving
   std::map<std::string, std::string> effects;  // effect plan overrides: name → "on" / "off"
+  BakeCaps caps;            // time and memory caps (not recorded: they do not change the result)
 
   nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
 };

@@ -1,0 +1,253 @@
+// Bad input is refused cleanly (issues 9 and 12): every prefix of a .glb, lying GLB lengths, JSON
+// nested too deep, node hierarchies that are not trees, NaN and out-of-range values, devices in
+// place of files. Each refusal is an InputError naming the file, the place and the rule, with the
+// documented exit code (README.md, "Exit codes"); limits give kExitLimitReached.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "walkrad/formats/chunk.h"
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/gltf_reader.h"
+#include "walkrad/formats/manifest.h"
+#include "walkrad/formats/mgf_reader.h"
+#include "walkrad/formats/walkthrough.h"
+
+namespace walkrad {
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<char>;
+
+const std::string kSeeds = std::string(WALKRAD_SOURCE_DIR) + "/tests/fuzz/corpus/";
+
+Bytes read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return Bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("walkrad-bad-input-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const Bytes& bytes) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    return path;
+  }
+  std::string write(const std::string& name, const std::string& text) { return write(name, Bytes(text.begin(), text.end())); }
+  std::string write(const std::string& name, const nlohmann::json& j) { return write(name, j.dump()); }
+
+  // Runs read, expects an InputError for `path` with `code` whose message holds every part.
+  template <typename Read>
+  void expect_refused(Read&& read, const std::string& path, ExitCode code, std::initializer_list<std::string> parts) {
+    try {
+      read();
+      ADD_FAILURE() << "accepted " << path;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), path) << e.what();
+      EXPECT_EQ(e.code(), code) << e.what();
+      for (const std::string& p : parts) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+  }
+
+  fs::path dir_;
+};
+
+uint32_t u32_at(const Bytes& b, size_t at) {
+  uint32_t v;
+  std::memcpy(&v, b.data() + at, 4);
+  return v;
+}
+void put_u32(Bytes& b, size_t at, uint32_t v) { std::memcpy(b.data() + at, &v, 4); }
+// Offset of the BIN chunk's data in a .glb (after the JSON chunk).
+size_t bin_data(const Bytes& glb) { return 20 + u32_at(glb, 12) + 8; }
+
+TEST_F(BadInput, EveryPrefixOfAGlbIsRefused) {
+  const Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
+  ASSERT_GT(glb.size(), 1000u);
+  EXPECT_NO_THROW(read_gltf(write("whole.glb", glb)));
+  for (size_t n = 0; n < glb.size(); ++n) {
+    const std::string path = write("prefix.glb", Bytes(glb.begin(), glb.begin() + long(n)));
+    expect_refused([&] { read_gltf(path); }, path, kExitBadInput, {});
+  }
+}
+
+TEST_F(BadInput, LyingGlbLengthsAreRefusedBeforeAllocation) {
+  const Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
+  // 20 bytes that claim a 4 GB file and a 4 GB JSON chunk.
+  Bytes tiny(glb.begin(), glb.begin() + 20);
+  put_u32(tiny, 8, 0xFFFFFFF0u);
+  put_u32(tiny, 12, 0xFFFFFFD0u);
+  const std::string t = write("tiny.glb", tiny);
+  expect_refused([&] { read_gltf(t); }, t, kExitBadInput, {"GLB header", "differs from the file size 20"});
+
+  Bytes json_long = glb;
+  put_u32(json_long, 12, uint32_t(glb.size()));
+  const std::string j = write("json-long.glb", json_long);
+  expect_refused([&] { read_gltf(j); }, j, kExitBadInput, {"GLB chunk 0", "does not fit"});
+
+  Bytes bin_long = glb;
+  put_u32(bin_long, bin_data(glb) - 8, 0x7FFFFFF0u);
+  const std::string b = write("bin-long.glb", bin_long);
+  expect_refused([&] { read_gltf(b); }, b, kExitBadInput, {"GLB chunk 1", "exceeds"});
+
+  // The JSON's buffer byteLength larger than the BIN chunk (same length of digits keeps the layout).
+  Bytes buffer_long = glb;
+  std::string text(buffer_long.begin() + 20, buffer_long.begin() + 20 + u32_at(glb, 12));
+  const size_t at = text.find("\"buffers\":[{\"byteLength\":60}]");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, 29, "\"buffers\":[{\"byteLength\":99}]");
+  std::copy(text.begin(), text.end(), buffer_long.begin() + 20);
+  const std::string l = write("buffer-long.glb", buffer_long);
+  expect_refused([&] { read_gltf(l); }, l, kExitBadInput, {"byteLength"});
+}
+
+TEST_F(BadInput, ChunkLengthsAreCheckedToo) {
+  Bytes chunk = read_bytes(kSeeds + "chunk/quad-chunk.glb");
+  put_u32(chunk, 8, uint32_t(chunk.size() + 4));
+  const std::string c = write("chunk.glb", chunk);
+  expect_refused([&] { read_chunk(c); }, c, kExitBadInput, {"GLB header"});
+}
+
+// Found by the fuzzer: tinygltf indexes a Draco primitive's bufferView unchecked; refused before.
+TEST_F(BadInput, DracoReferencesAreCheckedBeforeTinygltf) {
+  const std::string crasher = std::string(WALKRAD_SOURCE_DIR) + "/tests/fuzz/crashers/chunk/draco-missing-bufferview.glb";
+  expect_refused([&] { read_chunk(crasher); }, crasher, kExitBadInput,
+                 {"meshes[0].primitives[0].KHR_draco_mesh_compression", "bufferView does not exist"});
+  // A Draco attribute id that the compressed mesh does not have (tinygltf would dereference null).
+  const Bytes draco = read_bytes(kSeeds + "chunk/quad-draco.glb");
+  std::string text(draco.begin() + 20, draco.begin() + 20 + u32_at(draco, 12));
+  const std::string key = "KHR_draco_mesh_compression\":{\"attributes\":{\"COLOR_0\":";
+  const size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos) << text;
+  text[at + key.size()] = '7';
+  Bytes bad = draco;
+  std::copy(text.begin(), text.end(), bad.begin() + 20);
+  const std::string p = write("draco-id.glb", bad);
+  expect_refused([&] { read_chunk(p); }, p, kExitBadInput, {"attributes/COLOR_0", "no Draco attribute with id 7"});
+}
+
+TEST_F(BadInput, DeepJsonIsALimit) {
+  const std::string deep = "{\"asset\":{\"version\":\"2.0\"},\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  const std::string g = write("deep.gltf", deep);
+  expect_refused([&] { read_gltf(g); }, g, kExitLimitReached, {"byte ", "nests deeper than 64"});
+  const std::string w = write("deep.json", std::string(100000, '[') + std::string(100000, ']'));
+  expect_refused([&] { read_walkthrough(w); }, w, kExitLimitReached, {"nests deeper"});
+}
+
+nlohmann::json quad_gltf() {
+  std::ifstream in(kSeeds + "gltf/quad-embedded.gltf");
+  return nlohmann::json::parse(in);
+}
+
+TEST_F(BadInput, NodeHierarchiesMustBeShallowStrictTrees) {
+  nlohmann::json chain = quad_gltf();
+  chain["scenes"][0]["nodes"] = {4};
+  for (int i = 0; i < 300; ++i) chain["nodes"].push_back({{"children", {5 + i}}});
+  chain["nodes"].push_back({{"mesh", 0}});
+  const std::string c = write("chain.gltf", chain);
+  expect_refused([&] { read_gltf(c); }, c, kExitLimitReached, {"nodes[", "deeper than 256"});
+
+  // 2^40 paths through 40 nodes: refused as a node with two parents, not walked.
+  nlohmann::json dag = quad_gltf();
+  dag["scenes"][0]["nodes"] = {4};
+  for (int i = 0; i < 40; ++i) dag["nodes"].push_back({{"children", {5 + i, 5 + i}}, {"mesh", 0}});
+  dag["nodes"].push_back({{"mesh", 0}});
+  const std::string d = write("dag.gltf", dag);
+  expect_refused([&] { read_gltf(d); }, d, kExitBadInput, {"nodes[44]", "reached twice"});
+}
+
+TEST_F(BadInput, DevicesAreNotFiles) {
+  nlohmann::json g = quad_gltf();
+  g["buffers"][0]["uri"] = "/dev/zero";
+  const std::string p = write("dev.gltf", g);
+  expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"/dev/zero"});
+  expect_refused([&] { read_walkthrough("/dev/zero"); }, "/dev/zero", kExitBadInput, {"not a regular file"});
+  const std::string m = write("include.mgf", std::string("i /dev/zero\n"));
+  expect_refused([&] { read_mgf(m); }, m, kExitBadInput, {"line 1", "cannot open included file"});
+}
+
+// Issue 9: non-finite coordinates, reflectance outside [0, 1], negative emission: exit 3 with the place.
+TEST_F(BadInput, NonFiniteCoordinatesNameTheAccessor) {
+  Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(glb.data() + bin_data(glb) + 12, &nan, 4);  // vertex 1's x
+  const std::string p = write("nan.glb", glb);
+  expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"meshes[0].primitives[0]", "accessors[0]", "vertex 1 is not finite"});
+}
+
+TEST_F(BadInput, MaterialsOutOfRangeNameTheMaterial) {
+  for (const double bad : {1.5, -0.1}) {
+    nlohmann::json g = quad_gltf();
+    g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"][1] = bad;
+    const std::string p = write("rho.gltf", g);
+    expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"materials[0]", "baseColorFactor must lie in [0, 1]"});
+  }
+  nlohmann::json g = quad_gltf();
+  g["materials"][1]["emissiveFactor"] = {1, -1, 1};
+  const std::string p = write("emission.gltf", g);
+  expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"materials[1]", "emission must not be negative"});
+
+  const std::string nan = write("nan.mgf", std::string("v a =\n\tp 0 0 nan\n"));
+  expect_refused([&] { read_mgf(nan); }, nan, kExitBadInput, {"line 2", "'nan' is not a number"});
+  const std::string rd = write("rd.mgf", std::string("m x =\n\trd 1.2\n"));
+  expect_refused([&] { read_mgf(rd); }, rd, kExitBadInput, {"line 2", "must lie in [0, 1]"});
+  const std::string ed = write("ed.mgf", std::string("m x =\n\ted -5\n"));
+  expect_refused([&] { read_mgf(ed); }, ed, kExitBadInput, {"line 2", "emittance must not be negative"});
+  const std::string huge = write("huge.mgf", std::string("v a =\n\tp 1e300 0 0\nv b =\n\tp 0 1 0\nv c =\n\tp 0 0 1\n"
+                                                        "xf -s 1e300\nf a b c\nxf\n"));
+  expect_refused([&] { read_mgf(huge); }, huge, kExitBadInput, {"line 8", "beyond ±1e9 m after the transform"});
+}
+
+// Issue 9: zero-area triangles and repeated vertices are dropped and counted, the rest is read.
+TEST_F(BadInput, DegenerateTrianglesAreDroppedAndCounted) {
+  Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
+  const uint16_t repeated[6] = {0, 1, 2, 0, 2, 2};  // the second triangle repeats a vertex
+  std::memcpy(glb.data() + bin_data(glb) + 48, repeated, sizeof repeated);
+  const Scene s = read_gltf(write("degenerate.glb", glb));
+  // Mesh 0 appears under two nodes, one triangle each now; mesh 1 is one triangle.
+  EXPECT_EQ(s.dropped_degenerate, 2u);
+  EXPECT_EQ(s.polygons.size(), 3u);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_EQ(s.warnings.back(), "2 zero-area triangles dropped");
+}
+
+TEST_F(BadInput, WalkthroughLimitsAndNonNumbers) {
+  nlohmann::json path = nlohmann::json::parse(read_bytes(kSeeds + "walkthrough/path.json"));
+  path["path"]["frames"] = 1000000000;
+  const std::string p = write("long.json", path);
+  expect_refused([&] { read_walkthrough(p); }, p, kExitLimitReached, {"/path/frames", "exceeds the limit of 100000"});
+  const std::string n = write("nan.json", std::string(R"({"format": "walkrad-walkthrough", "version": 1, "path": {"frames": NaN}})"));
+  expect_refused([&] { read_walkthrough(n); }, n, kExitBadInput, {"not valid JSON"});
+  // Found by the fuzzer: a number past double's range is nlohmann's out_of_range, not a parse error.
+  const std::string big = write("big.json", std::string(R"({"format": "walkrad-walkthrough", "version": 1e99999})"));
+  expect_refused([&] { read_walkthrough(big); }, big, kExitBadInput, {"a number is out of range"});
+  path["path"]["frames"] = 10;
+  path["path"]["keyframes"][0]["position"][0] = 1e308;
+  path["path"]["keyframes"][1]["position"][0] = -1e308;
+  const std::string o = write("overflow.json", path);
+  expect_refused([&] { read_walkthrough(o); }, o, kExitBadInput, {"/path/keyframes", "must be finite"});
+}
+
+TEST_F(BadInput, ManifestChunksStayInTheFolder) {
+  for (const char* name : {"../../etc/passwd", "/etc/passwd", "..", "sub/chunk.glb"}) {
+    nlohmann::json m = nlohmann::json::parse(read_bytes(kSeeds + "manifest/manifest.json"));
+    m["chunks"][0]["file"] = name;
+    const std::string p = write("manifest.json", m);
+    expect_refused([&] { read_manifest(p); }, p, kExitBadInput, {"/chunks/0/file", "plain file name"});
+  }
+}
+
+}  // namespace
+}  // namespace walkrad
