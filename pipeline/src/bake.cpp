@@ -285,7 +285,10 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
               {"iteration", s.solver},
               {"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
-              {"left_error_max_w", stats.left_error_max}, {"left_error_sum_w", stats.left_error_sum}};
+              {"left_error_max_w", stats.left_error_max}, {"left_error_sum_w", stats.left_error_sum},
+              {"corrections", stats.corrections},
+              {"balance", {{"iterations", stats.balance_iterations}, {"row_error", stats.balance_row_error},
+                           {"column_error", stats.balance_column_error}, {"unbalanced_leaves", stats.balance_unbalanced}}}};
   const IterationStats& last = stats.iterations.back();
   r.energy = energy_json(last.emitted, last.absorbed);
   r.energy["residual_w"] = vec_json(last.residual);

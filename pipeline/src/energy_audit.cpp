@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "walkrad/pipeline/link_transport.h"
+
 namespace walkrad {
 
 double EnergyAudit::imbalance() const {
@@ -45,7 +47,7 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double carried, const
   for (const Link& l : n.links) down += h[l.source].Bt * l.F;
   carried += sent[i];
   if (n.child_count == 0) {
-    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down, carried * n.send});
+    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down * n.receive, carried * n.send});
     return;
   }
   for (uint32_t k = 0; k < n.child_count; ++k) audit_node(h, h.child(n, k), down, carried, sent, audit);
@@ -55,9 +57,11 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double carried, const
 
 EnergyAudit audit_hierarchy(const Hierarchy& h) {
   EnergyAudit audit;
-  std::vector<double> sent(h.nodes().size(), 0.0);  // Σ F A_receiver / A_source over links from the node
-  for (const HNode& n : h.nodes())
-    for (const Link& l : n.links) sent[l.source] += l.F * n.area / h[l.source].area;
+  // Σ F A_receiver ā_receiver / A_source over links from the node (ā: the receiver's mean receive factor).
+  std::vector<double> sent(h.nodes().size(), 0.0);
+  const std::vector<double> receive = mean_receive(h);
+  for (size_t k = 0; k < h.nodes().size(); ++k)
+    for (const Link& l : h.nodes()[k].links) sent[l.source] += l.F * h.nodes()[k].area * receive[k] / h[l.source].area;
   if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, 0.0, sent, audit);
   return audit;
 }

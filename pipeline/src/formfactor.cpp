@@ -106,9 +106,9 @@ std::vector<QuadraturePoint> quadrature_points(const Polygon& r, int order) {
 
 int quadrature_order(double distance, double receiver_size, double source_size) {
   const double ratio = distance / std::max(receiver_size, source_size);
-  if (ratio > 4.0) return 2;
-  if (ratio > 2.0) return 3;
-  if (ratio > 1.0) return 4;
+  if (clearly_greater(ratio, 4.0)) return 2;
+  if (clearly_greater(ratio, 2.0)) return 3;
+  if (clearly_greater(ratio, 1.0)) return 4;
   return 8;
 }
 

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "walkrad/pipeline/formfactor.h"
+#include "walkrad/pipeline/link_transport.h"
 #include "walkrad/pipeline/sampling.h"
 #include "walkrad/pipeline/shaft.h"
 #include "walkrad/pipeline/rounding.h"
@@ -17,7 +18,6 @@ namespace {
 // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
 // Used by the refinement oracle's estimate; link form factors use each surface's own cosine.
 constexpr double kClusterCosine = 0.25;
-constexpr double kMaxRowSum = 1.5;  // see push_pull
 
 struct Pending {
   uint32_t receiver, source;
@@ -83,7 +83,7 @@ class Solver {
       else refine_existing();
       is.new_links = pending_.size() - before;
       evaluate_pending(is);
-      if (s_.closed) conserve_sent_power();
+      if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
       const bool settled = is.new_links == 0;
       if (settled && converged_before) {
         is.change = 0;
@@ -95,6 +95,10 @@ class Solver {
       for (int sweep = 0; sweep < sweeps; ++sweep) {
         ++is.sweeps;
         is.change = solve_sweep(is);
+        if (s_.accelerate && s_.indirect) {
+          is.change = std::max(is.change, aggregation_correction(h_));
+          ++stats_.corrections;
+        }
         if (is.change <= s_.tolerance) break;
       }
       converged_before = is.change <= s_.tolerance;
@@ -103,19 +107,13 @@ class Solver {
     measure_left_error();
   }
 
-  // The sending side of a closed scene. A coarse link (i ← K) takes its transfer from K's leaves by
-  // area, so leaf j sends B_j A_j σ_j through the links from it and its ancestors, σ_j = Σ_K F_iK A_i / A_K,
-  // where in a closed scene it sends all of B_j A_j: each leaf's radiosity is carried away as B_j / σ_j
-  // (bounded to [1/2, 2]). In an empty closed box σ_j ranges 0.80–1.25 (ε 1e-3) while Σ A σ = Σ A.
-  void conserve_sent_power() {
-    std::vector<HNode>& nodes = h_.nodes();
-    std::vector<double> sent(nodes.size(), 0.0);
-    for (uint32_t i = 0; i < nodes.size(); ++i)  // sequential: a fixed order of sums
-      for (const Link& l : nodes[i].links) sent[l.source] += l.F * nodes[i].area / nodes[l.source].area;
-    for (uint32_t i = 0; i < nodes.size(); ++i) {  // parents come before their children
-      if (nodes[i].parent >= 0) sent[i] += sent[size_t(nodes[i].parent)];
-      if (!nodes[i].cluster && !nodes[i].child_count) nodes[i].send = sent[i] > 0 ? std::clamp(1.0 / sent[i], 0.5, 2.0) : 1.0;
-    }
+  // A closed scene: every leaf receives a row sum of 1 and sends all of its power (link_transport.h).
+  void balance_closed() {
+    const BalanceStats b = balance_closed_transport(h_);
+    stats_.balance_iterations += b.iterations;
+    stats_.balance_row_error = b.row_error;
+    stats_.balance_column_error = b.column_error;
+    stats_.balance_unbalanced = b.unbalanced;
   }
 
   void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress) {
@@ -144,7 +142,7 @@ class Solver {
   double estimate(const HNode& ri, const HNode& sj) const {
     const Vec3 d = sj.center - ri.center;
     const double r2 = dot(d, d), r = std::sqrt(r2);
-    const bool near = r < 2.0 * (ri.radius + sj.radius);
+    const bool near = clearly_greater(2.0 * (ri.radius + sj.radius), r);
     const Vec3 u = r > 0 ? d / r : Vec3{};
     const double ci = ri.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, dot(ri.normal, u)));
     const double cj = sj.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, -dot(sj.normal, u)));
@@ -177,7 +175,7 @@ class Solver {
     // bookcase against a wall), where the point-sampled kernel 1/r² has huge variance and the
     // cluster's average radiosity says nothing of that surface.
     const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
-    const bool must_split = reach > 0 && box_distance(h_[i].bounds, h_[j].bounds) < 0.5 * reach;
+    const bool must_split = reach > 0 && clearly_greater(0.5 * reach, box_distance(h_[i].bounds, h_[j].bounds));
     const bool split = must_split || oracle(h_[i], h_[j]) > eps_;
 
     // Candidates between the two: the parent's list filtered by this pair's shaft.
@@ -189,7 +187,7 @@ class Solver {
     if (split) {
       const bool si = splittable(i), sj = splittable(j);
       if (si || sj) {
-        bool split_receiver = si && (!sj || h_[i].radius >= h_[j].radius);
+        bool split_receiver = si && (!sj || !clearly_greater(h_[j].radius, h_[i].radius));
         if (must_split && si && sj && h_[i].cluster != h_[j].cluster) split_receiver = h_[i].cluster;
         if (must_split && !(split_receiver ? h_[i].cluster : h_[j].cluster) && (split_receiver ? sj : si) &&
             (split_receiver ? h_[j].cluster : h_[i].cluster))
@@ -459,10 +457,9 @@ class Solver {
     Vec3 H = n.H + down;
     const double row_sum = n.Fsum + down_sum;
     if (n.child_count == 0) {
-      if (row_sum > kMaxRowSum) {
-        H = H / row_sum;
-        ++is.clamped_leaves;
-      }
+      bool clamped = false;
+      H = leaf_irradiance(n, H, row_sum, &clamped);
+      if (clamped) ++is.clamped_leaves;
       const Vec3 b = n.emission + mul(n.rho, H);
       const double scale = max_component(b);
       if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);

@@ -24,6 +24,10 @@ RayScene::RayScene(const Scene& scene) {
   // Relative 1e-6 of the scene (1 µm in a 1 m room) is far above float's 6e-8 relative rounding of
   // re-centred coordinates, and far below any feature an element resolves.
   offset_ = 1e-6 * diag;
+  // A power of two (exact in floating point) that brings the diagonal into [1, 2): float rounding of
+  // the geometry and of rays is then the same at any scale, so the same scene in millimetres or
+  // kilometres casts rays with the same answers (stability suite, docs/numerics.md).
+  scale_ = std::ldexp(1.0, -std::ilogb(diag));
 
   device_ = rtcNewDevice("verbose=0");
   if (!device_) throw std::runtime_error("Embree: cannot create a device");
@@ -41,7 +45,7 @@ RayScene::RayScene(const Scene& scene) {
   for (size_t i = 0; i < n; ++i) {
     const Polygon& p = scene.polygons[i];
     for (int k = 0; k < 4; ++k) {
-      const Vec3 v = p.v[std::min(k, p.count - 1)] - origin_;
+      const Vec3 v = (p.v[std::min(k, p.count - 1)] - origin_) * scale_;
       vertices[(4 * i + k) * 3 + 0] = float(v.x);
       vertices[(4 * i + k) * 3 + 1] = float(v.y);
       vertices[(4 * i + k) * 3 + 2] = float(v.z);
@@ -61,7 +65,7 @@ RayScene::~RayScene() {
 }
 
 bool RayScene::occluded(const Vec3& from, const Vec3& to) const {
-  const Vec3 o = from - origin_, d = to - from;
+  const Vec3 o = (from - origin_) * scale_, d = (to - from) * scale_;
   RTCRay ray{};
   ray.org_x = float(o.x); ray.org_y = float(o.y); ray.org_z = float(o.z);
   ray.dir_x = float(d.x); ray.dir_y = float(d.y); ray.dir_z = float(d.z);
@@ -83,7 +87,7 @@ void RayScene::occluded(const Segment* segments, size_t count, uint8_t* blocked)
   for (size_t base = 0; base < count; base += kBatch) {
     const size_t n = std::min(kBatch, count - base);
     for (size_t k = 0; k < n; ++k) {
-      const Vec3 o = segments[base + k].from - origin_, d = segments[base + k].to - segments[base + k].from;
+      const Vec3 o = (segments[base + k].from - origin_) * scale_, d = (segments[base + k].to - segments[base + k].from) * scale_;
       RTCRay& r = rays[k];
       r.org_x = float(o.x); r.org_y = float(o.y); r.org_z = float(o.z);
       r.dir_x = float(d.x); r.dir_y = float(d.y); r.dir_z = float(d.z);
@@ -100,10 +104,10 @@ void RayScene::occluded(const Segment* segments, size_t count, uint8_t* blocked)
 }
 
 RayScene::Hit RayScene::intersect(const Vec3& origin, const Vec3& direction) const {
-  const Vec3 o = origin - origin_;
+  const Vec3 o = (origin - origin_) * scale_, dir = direction * scale_;
   RTCRayHit rh{};
   rh.ray.org_x = float(o.x); rh.ray.org_y = float(o.y); rh.ray.org_z = float(o.z);
-  rh.ray.dir_x = float(direction.x); rh.ray.dir_y = float(direction.y); rh.ray.dir_z = float(direction.z);
+  rh.ray.dir_x = float(dir.x); rh.ray.dir_y = float(dir.y); rh.ray.dir_z = float(dir.z);
   rh.ray.tnear = 0.0f;
   rh.ray.tfar = std::numeric_limits<float>::infinity();
   rh.ray.mask = 0xFFFFFFFFu;

@@ -29,33 +29,43 @@ const std::string kCornell = std::string(WALKRAD_SOURCE_DIR) + "/examples/cornel
 class HierarchicalFurnace : public ::testing::TestWithParam<double> {};
 
 // The furnace (B = E / (1 − ρ) everywhere). Hierarchical radiosity pushes a link's irradiance
-// uniformly to the receiver's children, so leaves in corners deviate by a few percent (the receiver
-// split on summed link spread bounds it); power is conserved: what is emitted is absorbed.
+// uniformly to the receiver's children, so unbalanced (as in an open scene) leaves in corners deviate
+// by a few percent (the receiver split on summed link spread bounds it). The box is closed, and a bake
+// balances closed scenes (link_transport.h): then every leaf is exact. Power is conserved either way.
 TEST_P(HierarchicalFurnace, ConvergesToEOverOneMinusRho) {
   const double rho = GetParam();
   const Scene box = test::closed_box(2.0, {rho, rho, rho}, {1, 1, 1});
   const ClusterTree tree = build_cluster_tree(box);
-  Hierarchy h(box, tree);
   const RayScene rays(box);
-  HierarchicalSettings s;
-  s.epsilon = 1e-3;
-  s.tolerance = 1e-7;
-  HierarchicalStats stats;
-  solve_hierarchical(h, rays, s, stats);
-  ASSERT_TRUE(stats.converged);
-  const double exact = 1.0 / (1.0 - rho);
-  double sq = 0, area = 0, worst = 0;
-  for (const HNode& n : h.nodes())
-    if (!n.cluster && !n.child_count) {
-      ASSERT_TRUE(is_finite(n.B));
-      sq += n.area * (n.B.x - exact) * (n.B.x - exact);
-      area += n.area;
-      worst = std::max(worst, std::fabs(n.B.x - exact) / exact);
+  for (const bool closed : {false, true}) {
+    Hierarchy h(box, tree);
+    HierarchicalSettings s;
+    s.epsilon = 1e-3;
+    s.tolerance = 1e-7;
+    s.closed = closed;
+    HierarchicalStats stats;
+    solve_hierarchical(h, rays, s, stats);
+    ASSERT_TRUE(stats.converged);
+    const double exact = 1.0 / (1.0 - rho);
+    double sq = 0, area = 0, worst = 0;
+    for (const HNode& n : h.nodes())
+      if (!n.cluster && !n.child_count) {
+        ASSERT_TRUE(is_finite(n.B));
+        sq += n.area * (n.B.x - exact) * (n.B.x - exact);
+        area += n.area;
+        worst = std::max(worst, std::fabs(n.B.x - exact) / exact);
+      }
+    std::printf("furnace ρ %g, %s: RMS %.2e, worst leaf %.2e\n", rho, closed ? "balanced" : "unbalanced",
+                std::sqrt(sq / area) / exact, worst);
+    if (closed) {
+      EXPECT_LT(worst, 1e-4);  // measured below 1e-7
+    } else {
+      EXPECT_LT(std::sqrt(sq / area) / exact, 0.02);  // area-weighted RMS (measured 0.8% and 1.6%)
+      EXPECT_LT(worst, 0.1);                          // corner leaves (measured 5.1% and 8.5%)
     }
-  EXPECT_LT(std::sqrt(sq / area) / exact, 0.02);  // area-weighted RMS (measured 0.8% and 1.4%)
-  EXPECT_LT(worst, 0.06);                         // corner leaves (measured 5.1% and 4.0%)
-  const IterationStats& last = stats.iterations.back();
-  EXPECT_NEAR(last.absorbed.x, last.emitted.x, 1e-3 * last.emitted.x);
+    const IterationStats& last = stats.iterations.back();
+    EXPECT_NEAR(last.absorbed.x, last.emitted.x, 1e-3 * last.emitted.x);
+  }
 }
 
 // Gauss-Seidel over links (each polygon gathers this sweep's values) reaches the same solution as

@@ -12,6 +12,7 @@
 #include "walkrad/formats/scene.h"
 #include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/contact_split.h"
+#include "walkrad/pipeline/effect_plan.h"
 #include "walkrad/pipeline/energy_audit.h"
 #include "walkrad/pipeline/form_factor_matrix.h"
 #include "walkrad/pipeline/gauss_seidel.h"
@@ -106,7 +107,7 @@ inline Solution solve_classic(const Scene& input, double element_size, bool acce
   return s;
 }
 
-inline Solution solve_hierarchy(const Scene& input, double epsilon, double tolerance = 1e-7) {
+inline Solution solve_hierarchy(const Scene& input, double epsilon, double tolerance = 1e-7, bool accelerate = true) {
   Solution s;
   ContactSplitStats split;
   s.scene = split_contacts(input, split);
@@ -116,6 +117,11 @@ inline Solution solve_hierarchy(const Scene& input, double epsilon, double toler
   HierarchicalSettings settings;
   settings.epsilon = epsilon;
   settings.tolerance = tolerance;
+  settings.accelerate = accelerate;
+  // As a bake does (effect plan): a closed scene balances its transport, a convex one casts no ray.
+  uint64_t closure_rays = 0;
+  settings.closed = is_closed(s.scene, rays, closure_rays);
+  settings.visibility = !is_convex_enclosure(s.scene);
   HierarchicalStats stats;
   solve_hierarchical(h, rays, settings, stats);
   for (const IterationStats& it : stats.iterations) s.iterations += it.sweeps;

@@ -75,26 +75,31 @@ TEST(Furnace099, PlainGaussSeidelIsFarSlower) {
   EXPECT_GT(plain.iterations, 20 * fast.iterations);
 }
 
-// The hierarchical method has no correction: its Gauss-Seidel sweeps take the slow road (measured
-// 611 sweeps). Its leaves near corners deviate as in the ρ = 0.5/0.9 furnace (pipeline/tests);
-// measured area RMS 0.67%, worst leaf 3.7%, audit imbalance 4.6e-3 (ε = 1e-2).
-TEST(Furnace099, HierarchicalWithinStatedBound) {
-  const Solution s = solve_both_ways([&] { return solve_hierarchy(furnace(0.99, {1, 1, 1}), 1e-2); });
-  double sq = 0, area = 0, worst = 0;
-  for (size_t i = 0; i < s.B.size(); ++i) {
-    sq += s.area[i] * (s.B[i].x - 100) * (s.B[i].x - 100);
-    area += s.area[i];
-    worst = std::max(worst, std::fabs(s.B[i].x - 100) / 100);
-  }
-  std::printf("hierarchical furnace ρ=0.99: %d sweeps, converged %d, RMS %.2e, worst %.2e, imbalance %.2e\n", s.iterations,
-              int(s.converged), std::sqrt(sq / area) / 100, worst, s.audit.imbalance());
+// Hierarchical: the furnace is closed (effect plan), so every leaf's gather and send are balanced
+// (link_transport.h: rows sum to 1, each leaf sends its power) and the uniform B = E / (1 − ρ) is the
+// exact solution of the linked system; the aggregation correction after each sweep gets there in
+// bounded sweeps. Measured: 22 sweeps, every leaf within 3e-8, audit 3e-15 (ε 1e-2); before both,
+// 611 sweeps, RMS 0.67%, worst leaf 3.7%.
+TEST(Furnace099, HierarchicalIsExactInBoundedIterations) {
+  const Vec3 e(1.0, 2.0, 0.5);
+  const Solution s = solve_both_ways([&] { return solve_hierarchy(furnace(0.99, e), 1e-2); });
+  double worst = 0;
+  for (size_t i = 0; i < s.B.size(); ++i)
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(s.B[i][c] - 100 * e[c]) / (100 * e[c]));
+  std::printf("hierarchical furnace ρ=0.99: %d sweeps, converged %d, worst leaf %.2e, imbalance %.2e\n", s.iterations,
+              int(s.converged), worst, s.audit.imbalance());
   EXPECT_TRUE(s.converged);
-  EXPECT_LE(s.iterations, 1000);
-  EXPECT_LT(std::sqrt(sq / area) / 100, 0.02);
-  EXPECT_LT(worst, 0.06);
-  EXPECT_LT(s.audit.imbalance(), 1e-2);
+  EXPECT_LE(s.iterations, 100);
+  EXPECT_LE(worst, 1e-3);
+  EXPECT_LE(s.audit.imbalance(), 1e-4);
 }
 
+TEST(Furnace099, HierarchicalWithoutCorrectionIsFarSlower) {
+  const Solution plain = solve_hierarchy(furnace(0.99, {1, 1, 1}), 1e-2, 1e-7, /*accelerate=*/false);
+  const Solution fast = solve_hierarchy(furnace(0.99, {1, 1, 1}), 1e-2);
+  std::printf("hierarchical furnace ρ=0.99: %d sweeps plain, %d corrected\n", plain.iterations, fast.iterations);
+  EXPECT_GT(plain.iterations, 10 * fast.iterations);
+}
 
 // ---- Scale and position: a room (ρ 0.7) with a lamp flush with its ceiling and a block standing
 // on its floor, scaled by 1e-3 and 1e3 and moved 1e5 units away: the same radiosity within 1e-4.
@@ -109,6 +114,7 @@ Scene lit_room() {
 struct Placement {
   double scale;
   Vec3 offset;
+  double bound = 1e-4;  // hierarchical: largest relative difference allowed
 };
 
 class ScaleAndOffset : public ::testing::TestWithParam<Placement> {};
@@ -133,15 +139,21 @@ std::vector<Vec3> matched(const Solution& ref, const Solution& moved, double sca
 }
 
 // Largest relative difference of two solutions on the same elements (0 where both are 0: the floor
-// under the block).
-double largest_difference(const std::vector<Vec3>& ref, const std::vector<Vec3>& moved) {
+// under the block), relative to max(the element's value, floor).
+double largest_difference(const std::vector<Vec3>& ref, const std::vector<Vec3>& moved, double floor = 0) {
   double worst = 0;
   for (size_t i = 0; i < ref.size(); ++i)
     for (int c = 0; c < 3; ++c) {
       const double diff = std::fabs(moved[i][c] - ref[i][c]);
-      worst = std::max(worst, diff == 0 ? 0.0 : diff / ref[i][c]);
+      worst = std::max(worst, diff == 0 ? 0.0 : diff / std::max(ref[i][c], floor));
     }
   return worst;
+}
+
+double largest(const std::vector<Vec3>& values) {
+  double m = 0;
+  for (const Vec3& v : values) m = std::max(m, max_component(v));
+  return m;
 }
 
 // Classic: element for element, within 1e-4 (measured: 5e-15 for the scalings, 5.6e-5 at 1e5 m,
@@ -156,55 +168,37 @@ TEST_P(ScaleAndOffset, ClassicGivesTheSameRadiosity) {
   EXPECT_LE(worst, 1e-4);
 }
 
-// Area-weighted mean radiosity of each input polygon (contact-split pieces summed back by source).
-std::vector<Vec3> polygon_means(const Solution& s, size_t polygons) {
-  std::vector<Vec3> sum(polygons);
-  std::vector<double> area(polygons, 0.0);
-  for (size_t i = 0; i < s.B.size(); ++i) {
-    const uint32_t p = s.scene.polygons[s.polygon[i]].source;
-    sum[p] += s.B[i] * s.area[i];
-    area[p] += s.area[i];
-  }
-  for (size_t p = 0; p < polygons; ++p) sum[p] = area[p] > 0 ? sum[p] / area[p] : Vec3{};
-  return sum;
-}
 
-// Hierarchical: its refinement compares B·A·ρ·F with ε, so a visibility ray that flips with the last
-// bit of a coordinate may split one element more or less, or a link may end one level higher, and
-// leaves do not match one to one. The bound holds for each input polygon's mean radiosity (measured
-// within 0.48%), not element for element.
+// Hierarchical: element for element within 1e-4 too. Its refinement takes discrete decisions (which
+// end of a link to split, a quadrature order) on ratios that regular geometry makes exact ties; they
+// are decided on a relative slack (rounding.h, clearly_greater), so the same leaves come out at any
+// scale (measured: 1890 leaves each time, 3e-14–4e-14 apart for the scalings). Before that, ties
+// went by rounding: 1884 vs 1890 leaves and polygon means 0.5% apart.
+// Moved 1e5 m at the same scale, the input itself changes: its coordinates round to 1.5e-11 m, and a
+// few visibility rays along the block's edges change their answer (hard decisions on perturbed
+// geometry; the classic method sees 5.6e-5 for the same reason): measured 3.1e-4 on floor elements
+// beside the block, hence the bound 5e-4 there. The floor under the block receives only what cluster
+// links leak onto it (about 1% of the room's level, docs/numerics.md), so differences are taken
+// relative to at least 1% of the scene's brightest element.
 class HierarchicalScaleAndOffset : public ::testing::TestWithParam<Placement> {};
 
-TEST_P(HierarchicalScaleAndOffset, GivesTheSameMeans) {
+TEST_P(HierarchicalScaleAndOffset, GivesTheSameRadiosity) {
   const Placement p = GetParam();
-  Scene room = lit_room();
-  for (size_t k = 0; k < room.polygons.size(); ++k) room.polygons[k].source = uint32_t(k);
-  const Solution ref = solve_hierarchy(room, 1e-3);
-  const Solution moved = solve_both_ways([&] { return solve_hierarchy(transformed(room, p.scale, p.offset), 1e-3); });
-  const double worst = largest_difference(polygon_means(ref, room.polygons.size()), polygon_means(moved, room.polygons.size()));
-  std::printf("hierarchical ×%g +%g: largest relative difference of polygon means %.2e (%zu vs %zu leaves)\n", p.scale,
-              length(p.offset), worst, ref.B.size(), moved.B.size());
-  EXPECT_LE(worst, 1e-2);
+  const Solution ref = solve_hierarchy(lit_room(), 1e-3);
+  const Solution moved = solve_both_ways([&] { return solve_hierarchy(transformed(lit_room(), p.scale, p.offset), 1e-3); });
+  ASSERT_EQ(ref.B.size(), moved.B.size());
+  const double worst = largest_difference(ref.B, matched(ref, moved, p.scale, p.offset), 1e-2 * largest(ref.B));
+  std::printf("hierarchical ×%g +%g: largest relative difference %.2e over %zu leaves\n", p.scale, length(p.offset), worst,
+              ref.B.size());
+  EXPECT_LE(worst, p.bound);
 }
 
 INSTANTIATE_TEST_SUITE_P(Placements, ScaleAndOffset,
                          ::testing::Values(Placement{1e-3, {}}, Placement{1e3, {}}, Placement{1, {1e5, 1e5, 1e5}},
                                            Placement{1e3, {0, -1e5, 1e5}}, Placement{1e-3, {1e5, 0, 0}}));
 INSTANTIATE_TEST_SUITE_P(Placements, HierarchicalScaleAndOffset,
-                         ::testing::Values(Placement{1e-3, {}}, Placement{1e3, {}}, Placement{1, {1e5, 1e5, 1e5}},
-                                           Placement{1e3, {0, -1e5, 1e5}}));
-
-// The 2 mm room 1e5 m away: its coordinates' rounding is 1.6e-6 of its size (classic: 5.5e-7), and
-// more refinement decisions flip (polygon means measured within 2.4%).
-TEST(HierarchicalScaleAndOffset, TinyRoomFarAwayWithinStatedBound) {
-  Scene room = lit_room();
-  for (size_t k = 0; k < room.polygons.size(); ++k) room.polygons[k].source = uint32_t(k);
-  const Solution ref = solve_hierarchy(room, 1e-3);
-  const Solution moved = solve_both_ways([&] { return solve_hierarchy(transformed(room, 1e-3, {1e5, 0, 0}), 1e-3); });
-  const double worst = largest_difference(polygon_means(ref, room.polygons.size()), polygon_means(moved, room.polygons.size()));
-  std::printf("hierarchical ×1e-3 +1e5: largest relative difference of polygon means %.2e\n", worst);
-  EXPECT_LE(worst, 5e-2);
-}
+                         ::testing::Values(Placement{1e-3, {}}, Placement{1e3, {}}, Placement{1, {1e5, 1e5, 1e5}, 5e-4},
+                                           Placement{1e3, {0, -1e5, 1e5}}, Placement{1e-3, {1e5, 0, 0}}));
 
 // ---- Contacts: a dark closed room (walls back to back: an inward and an outward box on the same
 // faces, touching along every edge and corner) standing on the floor of a lit room, a rug coplanar
@@ -255,7 +249,7 @@ TEST(Contacts, HierarchicalNoLeakNoNegative) {
   std::printf("hierarchical junctions: dark room max B %.3e, imbalance %.2e, %d sweeps\n", largest_in_dark_room(s),
               s.audit.imbalance(), s.iterations);
   // Not leak-free: a link to a cluster pushes its irradiance onto every surface in it, the dark room's
-  // inward faces included (docs/numerics.md, "Open"). Measured 0.32 W/m² (the lamp: 10 W/m²).
+  // inward faces included (docs/numerics.md, "Open"). Measured 0.29 W/m² (the lamp: 10 W/m²).
   EXPECT_LE(largest_in_dark_room(s), 0.5);
 }
 
@@ -300,19 +294,16 @@ TEST(SliversAndTinyElements, ClassicIsExact) {
   EXPECT_LE(s.audit.imbalance(), 1e-4);
 }
 
-TEST(SliversAndTinyElements, HierarchicalWithinStatedBound) {
+// Closed, so balanced like the furnace: every leaf, the 4e-8 m² one and the slivers included, within
+// 1e-3 of E / (1 − ρ) (measured 1e-8; 10.1% at corner leaves before the balance).
+TEST(SliversAndTinyElements, HierarchicalIsExact) {
   const Solution s = solve_both_ways([] { return solve_hierarchy(cut_furnace(), 1e-3); });
   expect_sane(s, 10.0 * 1.5);
-  double sq = 0, area = 0, worst = 0;
-  for (size_t i = 0; i < s.B.size(); ++i) {
-    sq += s.area[i] * (s.B[i].x - 10) * (s.B[i].x - 10);
-    area += s.area[i];
-    worst = std::max(worst, std::fabs(s.B[i].x - 10) / 10);
-  }
-  std::printf("hierarchical cut furnace: RMS %.2e, worst %.2e, imbalance %.2e\n", std::sqrt(sq / area) / 10, worst,
-              s.audit.imbalance());
-  EXPECT_LT(std::sqrt(sq / area) / 10, 0.02);
-  EXPECT_LT(worst, 0.15);  // corner leaves (measured 10.1%); RMS measured 1.5%
+  double worst = 0;
+  for (size_t i = 0; i < s.B.size(); ++i) worst = std::max(worst, std::fabs(s.B[i].x - 10) / 10);
+  std::printf("hierarchical cut furnace: worst %.2e, imbalance %.2e\n", worst, s.audit.imbalance());
+  EXPECT_LE(worst, 1e-3);
+  EXPECT_LE(s.audit.imbalance(), 1e-4);
 }
 
 // ---- A very small, very bright emitter: E = 1e6 W/m² on 1 mm² (1 W) flush with the ceiling of a
@@ -351,8 +342,7 @@ namespace walkrad::stability {
 namespace {
 
 // ---- The energy audit of a real bake: `walkrad bake` on the ρ = 0.99 furnace written as glTF.
-// report.json's "energy_audit" balances within 1e-4 with the classic method (measured 1e-9); the
-// hierarchical bake reports its imbalance honestly (one-way links are not reciprocal).
+// report.json's "energy_audit" balances within 1e-4 with both methods.
 nlohmann::json bake_report(const std::string& method) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("walkrad-stability-" + std::to_string(::getpid()));
@@ -385,13 +375,14 @@ TEST(EnergyAudit, ClassicBakeOfAClosedSceneBalances) {
   }
 }
 
-TEST(EnergyAudit, HierarchicalBakeReportsItsImbalance) {
+// The furnace is closed, so the hierarchical bake balances its transport (link_transport.h) and its
+// audit closes like the classic one's (measured 3.7e-14).
+TEST(EnergyAudit, HierarchicalBakeOfAClosedSceneBalances) {
   const nlohmann::json a = bake_report("hierarchical")["energy_audit"];
   std::printf("hierarchical bake audit: %s\n", a.dump().c_str());
-  const double imbalance = a["imbalance"];
-  EXPECT_TRUE(std::isfinite(imbalance));
-  EXPECT_LE(imbalance, 1e-2);
-  EXPECT_EQ(a["balanced"].get<bool>(), imbalance <= 1e-4);
+  EXPECT_TRUE(a["balanced"].get<bool>());
+  EXPECT_LE(a["imbalance"].get<double>(), 1e-4);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a["emitted_w"][c].get<double>(), 24.0, 1e-9);
 }
 
 }  // namespace

@@ -41,7 +41,8 @@ struct HNode {
 
   Vec3 B, H;              // radiosity, irradiance gathered this iteration
   Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
-  double send = 1.0;      // leaf: power-conserving factor on what it sends (closed scenes)
+  double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
+  double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
   double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
   double R = 0;           // direct importance (leaf elements; summed up in clusters)
   double I = 0, Ig = 0;   // importance, importance gathered this iteration

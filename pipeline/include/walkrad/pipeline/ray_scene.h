@@ -1,7 +1,8 @@
 // RayScene: the input polygons in an Embree 3 BVH, for visibility and primary rays. Polygons go in as
 // one quad geometry (a triangle is a quad whose last vertex repeats, as Embree documents), so a hit's
 // primID is the polygon's index. The scene is built in robust mode (no ray slips through a shared
-// edge) and re-centred on its bounds so that float coordinates keep their digits far from the origin.
+// edge), re-centred on its bounds so that float coordinates keep their digits far from the origin, and
+// scaled by a power of two to a unit size so that rounding does not depend on the scene's units.
 #pragma once
 
 #include <cstdint>
@@ -45,6 +46,7 @@ class RayScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   Vec3 origin_;  // subtracted from every coordinate before it reaches Embree
+  double scale_ = 1;  // then multiplied by this power of two
   double offset_ = 0;
 };
 

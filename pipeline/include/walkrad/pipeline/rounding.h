@@ -13,6 +13,12 @@
 
 namespace walkrad {
 
+// Discrete choices taken on ratios of computed lengths (a quadrature order, which end of a link to
+// split, whether two nodes are near) meet exact ties in regular geometry (a 0.5 m element 1 m from
+// another): decided by rounding, the same scene scaled or moved would decide otherwise and refine
+// differently. A tie within 1e-9 counts as "not greater", whatever the units.
+inline bool clearly_greater(double a, double b) { return a > b + 1e-7 * std::fabs(b); }
+
 inline double rounding_at(const Vec3& p) {
   return 256 * DBL_EPSILON * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
 }
