@@ -64,6 +64,12 @@ void check_draco(const char* text, size_t size, const unsigned char* bin, size_t
       const int64_t offset = offset_j.get<int64_t>(), length = length_j.get<int64_t>();
       if (offset < 0 || length < 0 || uint64_t(offset) + uint64_t(length) > bin_size)
         throw InputError(file, place, "the Draco bufferView lies outside the BIN chunk");
+      // tinygltf keeps only the buffer's declared byteLength of the BIN chunk and hands Draco the
+      // view without checking it against that (a fuzzing finding: a view one byte past the buffer).
+      const json& declared = buffer->value("byteLength", json());
+      if (!declared.is_number_integer() || declared.get<int64_t>() < 0 ||
+          uint64_t(offset) + uint64_t(length) > uint64_t(declared.get<int64_t>()))
+        throw InputError(file, place, "the Draco bufferView lies outside its buffer's byteLength");
       if (prim.contains("indices")) {
         const json* acc = element(doc, "accessors", prim["indices"]);
         if (!acc || !valid_component_type(*acc, true)) throw InputError(file, place, "indices: no such accessor, or not unsigned");

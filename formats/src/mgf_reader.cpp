@@ -30,6 +30,10 @@ using mgf::Loop;
 
 constexpr size_t kMaxIncludeDepth = 32;
 constexpr long kMaxInstances = 1'000'000;  // array instances (and -i repeats) alive at once
+// Entities handled in all, arrays' repeats included: nested arrays multiply, and a 1 KiB file could
+// make 10^9 (a fuzzing finding: 12 M in a 1.3 KiB file, 4 s). The largest classic scene here (the
+// hospital, ../shared/scenes/mgf) handles about 67,000: the limit is 30 times that.
+constexpr uint64_t kMaxHandled = 2'000'000;
 constexpr size_t kMaxFaceVertices = 4096;  // ear clipping is quadratic; MGF lines hold 4096 characters
 
 // One entity: its keyword and arguments, and the line it starts on.
@@ -181,6 +185,8 @@ class Reader {
     while (true) {
       for (; k < file.entities.size(); ++k) {
         entity_ = &file.entities[k];
+        if (++handled_ > kMaxHandled)
+          fail("arrays repeat the file's entities more than " + std::to_string(kMaxHandled) + " times", kExitLimitReached);
         const std::string& kw = keyword();
         if (kw == "xf") {
           ++stats_.entities[kw];
@@ -619,6 +625,7 @@ class Reader {
 
   const MgfOptions& options_;
   MgfStats& stats_;
+  uint64_t handled_ = 0;  // entities handled, repeats included (kMaxHandled)
   Scene& scene_;
   const int divisions_;
   const Affine identity_{};

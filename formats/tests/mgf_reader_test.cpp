@@ -649,6 +649,15 @@ TEST(MgfReader, RefusesIncludeCyclesAndDeepIncludes) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.code(), kExitLimitReached);
   }
+  // Nested arrays of 1,000 × 1,000 instances (within the instance limit) over 3 entities: 3 M
+  // entities to handle, refused before the time goes (a fuzzing finding).
+  try {
+    load("xf -a 1000\nxf -a 1000\nc\nc\nc\nxf\nxf\n");
+    ADD_FAILURE() << "accepted 3 M repeated entities";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("more than 2000000 times"), std::string::npos) << e.what();
+    EXPECT_EQ(e.code(), kExitLimitReached);
+  }
   EXPECT_THROW(load(kSquare, nullptr, MgfOptions{0, 1, 100}), std::invalid_argument);
   EXPECT_THROW(load(kSquare, nullptr, MgfOptions{0.02, 3, 100}), std::invalid_argument);
 }
