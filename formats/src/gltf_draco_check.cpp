@@ -85,6 +85,15 @@ void check_draco(const char* text, size_t size, const unsigned char* bin, size_t
         const int64_t uid = id.get<int64_t>();
         if (uid < 0 || uid > INT32_MAX || !dm.GetAttributeByUniqueId(uint32_t(uid)))
           throw InputError(file, place + "/attributes/" + name, "no Draco attribute with id " + std::to_string(uid));
+        // glTF's component types only: tinygltf converts through Draco's templates, which read a bool
+        // attribute's bytes as bool (a fuzzing finding: undefined behaviour on the byte 128).
+        switch (dm.GetAttributeByUniqueId(uint32_t(uid))->data_type()) {
+          case draco::DT_INT8: case draco::DT_UINT8: case draco::DT_INT16: case draco::DT_UINT16:
+          case draco::DT_UINT32: case draco::DT_FLOAT32:
+            break;
+          default:
+            throw InputError(file, place + "/attributes/" + name, "the Draco attribute's data type is not one glTF allows");
+        }
         const json* attrs = prim.contains("attributes") && prim["attributes"].is_object() ? &prim["attributes"] : nullptr;
         const json* acc = attrs && attrs->contains(name) ? element(doc, "accessors", (*attrs)[name]) : nullptr;
         if (!acc || !valid_component_type(*acc, false))
