@@ -59,6 +59,11 @@ class Solver {
     eps_ = s_.epsilon * power;
     stats_.epsilon_absolute = eps_;
     min_area_ = s_.min_area > 0 ? s_.min_area : std::pow(2.0 * root.radius / 256.0, 2);
+    // Changes are measured relative to the leaf's radiosity, but not below 1e-9 of the brightest
+    // emitter's: a closed dark room's last traces of light decay by ρ per sweep and would keep their
+    // relative change until they underflow (3,853 sweeps in the junction scene).
+    for (const HNode& n : h_.nodes())
+      if (!n.cluster) change_floor_ = std::max(change_floor_, 1e-9 * max_component(n.emission));
     // Importance: scaled so that Σ R = Σ A, then B·I·ρ·F and the BF oracle B·A·ρ·F share ε.
     importance_ = s_.use_importance && root.R > 0;
     stats_.oracle = importance_ ? "importance" : "BF";
@@ -96,7 +101,7 @@ class Solver {
         ++is.sweeps;
         is.change = solve_sweep(is);
         if (s_.accelerate && s_.indirect) {
-          is.change = std::max(is.change, aggregation_correction(h_));
+          is.change = std::max(is.change, aggregation_correction(h_, change_floor_));
           ++stats_.corrections;
         }
         if (is.change <= s_.tolerance) break;
@@ -237,6 +242,15 @@ class Solver {
         }
       }
       for (const Link& l : links) {
+        // A cluster receiver: a link whose transfer lands unevenly on the children (misplaced by the
+        // uniform push) goes down to them, alone (its siblings stay where they are accurate).
+        if (h_[i].cluster && h_[i].child_count > 0 &&
+            luminance(h_[l.source].B) * l.spread * weight(h_[i]) * luminance(h_[i].rho) > eps_) {
+          --stats_.links;
+          ++stats_.refinements;
+          for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(h_.child(h_[i], k), l.source, nullptr);
+          continue;
+        }
         const bool can = splittable(uint32_t(i)) || splittable(l.source);
         if (can && oracle(h_[i], h_[l.source]) > eps_) {
           --stats_.links;
@@ -302,14 +316,22 @@ class Solver {
       // estimate of its occluded part, (A_j/π) E[cos cos / r² · blocked]. Visibility as a fraction
       // of rays (even weighted) is biased where occluders sit near either end, and those biases
       // add up to lost power in cluttered rooms.
+      // A link whose every ray is blocked sees nothing of the source: 0, not the control variate's
+      // unbiased but noisy difference, which is positive half of the time and leaked light into
+      // closed rooms (stability suite, junctions). Per point it would bias: one ray a point is common.
       double sum = 0;
+      size_t hidden = 0;
       for (size_t q = 0; q < pts.size(); ++q) {
         double occluded = 0;
         for (int k = 0; k < per_point; ++k)
-          if (blocked[q * per_point + k]) occluded += kernel[q * per_point + k];
+          if (blocked[q * per_point + k]) {
+            occluded += kernel[q * per_point + k];
+            ++hidden;
+          }
         const double f = weights[q] - pts[q].weight * sj.area / kPi * (per_point ? occluded / per_point : 0.0);
         sum += f;
       }
+      if (!segments.empty() && hidden == segments.size()) sum = 0;
       sum = std::max(0.0, sum);
       p.F = sum / ri.area;
       p.rays = segments.size();
@@ -333,10 +355,14 @@ class Solver {
     const int n = std::max(1, p.samples);
     double mc = 0, weighted = 0, open = 0;
     int drawn = 0, facing = 0;
+    std::vector<ClusterSample>& drawn_samples = cluster_scratch_;
+    drawn_samples.clear();
     for (; drawn < n || (facing < (n + 3) / 4 && drawn < 8 * n); ++drawn) {
       Vec3 pi, ni, pj, nj;
-      h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni);
+      uint32_t child = 0;
+      h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni, &child);
       h_.sample(sj, rng.uniform(), rng.uniform(), rng.uniform(), pj, nj);
+      drawn_samples.push_back({child, 0.0, -1});
       const Vec3 d = pj - pi;
       const double r2 = dot(d, d);
       if (r2 <= 0) continue;
@@ -346,13 +372,16 @@ class Solver {
       const double kernel = ci * cj * sj.area / (kPi * r2);  // finite: linked clusters do not overlap
       mc += kernel;
       ++facing;
+      drawn_samples.back().value = kernel;
       if (p.need_rays) {
+        drawn_samples.back().segment = int32_t(segments.size());
         segments.push_back({pi + ni * offset, pj + nj * offset});
         weights.push_back(kernel);
       }
     }
     blocked.assign(segments.size(), 0);
     if (!segments.empty()) rays_.occluded(segments.data(), segments.size(), blocked.data());
+    if (ri.cluster) p.spread = misplaced(ri, drawn_samples, blocked);
     for (size_t k = 0; k < segments.size(); ++k) {
       weighted += weights[k];
       if (!blocked[k]) open += weights[k];
@@ -363,12 +392,50 @@ class Solver {
     const double occluded = (weighted - open) / drawn;
     const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / drawn;
     // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
-    // much are caught at the leaves (push_pull).
-    p.F = std::max(0.0, unoccluded - occluded);
+    // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
+    const bool all_blocked = !segments.empty() && open == 0;
+    p.F = all_blocked ? 0.0 : std::max(0.0, unoccluded - occluded);
     p.rays = segments.size();
   }
 
   static constexpr uint64_t kExactClusterPairs = 64;
+
+  // A Monte Carlo sample of a link with a cluster receiver: which child of the receiver its point
+  // lies in, its kernel (0 when the two points do not face each other), its ray (−1: none).
+  struct ClusterSample {
+    uint32_t child;
+    double value;
+    int32_t segment;
+  };
+
+  // What pushing a cluster link's transfer uniformly to the receiver's children misplaces: the mean
+  // over children (by their share of samples, i.e. of area) of how far each child's own estimate lies
+  // from the link's, beyond twice its statistical error (so that a uniformly lit cluster is not split
+  // for noise). A child facing away or hidden behind others (a closed room's inner walls) gets nothing
+  // of what the others get: the link's receiver is split where that matters (refine_existing).
+  static double misplaced(const HNode& receiver, const std::vector<ClusterSample>& samples, const std::vector<uint8_t>& blocked) {
+    constexpr uint32_t kMaxChildren = 8;
+    if (receiver.child_count < 2 || receiver.child_count > kMaxChildren || samples.empty()) return 0.0;
+    double sum[kMaxChildren] = {}, sq[kMaxChildren] = {}, count[kMaxChildren] = {};
+    double total = 0;
+    for (const ClusterSample& s : samples) {
+      const double v = s.segment >= 0 && blocked[size_t(s.segment)] ? 0.0 : s.value;
+      sum[s.child] += v;
+      sq[s.child] += v * v;
+      count[s.child] += 1;
+      total += v;
+    }
+    const double mean = total / double(samples.size());
+    double out = 0;
+    for (uint32_t c = 0; c < receiver.child_count; ++c) {
+      if (count[c] < 1) continue;
+      const double m = sum[c] / count[c];
+      const double var = std::max(0.0, sq[c] / count[c] - m * m);
+      const double error = 2.0 * std::sqrt(var / count[c]);
+      out += count[c] / double(samples.size()) * std::max(0.0, std::fabs(m - mean) - error);
+    }
+    return out;
+  }
 
   // The form factor kernel between two surface points, cos θ cos θ' / r² (without the constant).
   static double point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
@@ -461,7 +528,7 @@ class Solver {
       H = leaf_irradiance(n, H, row_sum, &clamped);
       if (clamped) ++is.clamped_leaves;
       const Vec3 b = n.emission + mul(n.rho, H);
-      const double scale = max_component(b);
+      const double scale = std::max(max_component(b), change_floor_);
       if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
       // The residual of the leaf's equation before this update: |E + ρH − B| A.
       const Vec3 r = b - n.B;
@@ -511,13 +578,15 @@ class Solver {
   const RayScene& rays_;
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
-  double eps_ = 0, min_area_ = 0, change_ = 0;
+  double eps_ = 0, min_area_ = 0, change_ = 0, change_floor_ = 0;
   bool importance_ = false;
   std::vector<Pending> pending_;
   static thread_local std::vector<double> kernel_scratch_;
+  static thread_local std::vector<ClusterSample> cluster_scratch_;
 };
 
 thread_local std::vector<double> Solver::kernel_scratch_;
+thread_local std::vector<Solver::ClusterSample> Solver::cluster_scratch_;
 
 }  // namespace
 

@@ -153,7 +153,8 @@ void Hierarchy::set_view_hits(std::vector<ViewHit> hits) {
   }
 }
 
-void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point, Vec3& normal) const {
+void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point, Vec3& normal, uint32_t* child) const {
+  if (child) *child = 0;
   if (!n.cluster) {
     point = sample_polygon(n.shape, u, v);
     normal = n.normal;
@@ -167,6 +168,18 @@ void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point
   const Polygon& p = scene_.polygons[tree_.polygons[k]];
   point = sample_polygon(p, u, v);
   normal = polygon_normal(p);
+  if (child) {
+    for (uint32_t c = 0; c < n.child_count; ++c) {
+      const HNode& kid = nodes_[children_[n.child_begin + c]];
+      const bool holds = kid.cluster ? k >= tree_.nodes[kid.tree_node].first &&
+                                           k < tree_.nodes[kid.tree_node].first + tree_.nodes[kid.tree_node].count
+                                     : kid.polygon == tree_.polygons[k];
+      if (holds) {
+        *child = c;
+        break;
+      }
+    }
+  }
 }
 
 }  // namespace walkrad

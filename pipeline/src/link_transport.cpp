@@ -174,7 +174,7 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
   return stats;
 }
 
-double aggregation_correction(Hierarchy& h) {
+double aggregation_correction(Hierarchy& h, double floor) {
   std::vector<HNode>& nodes = h.nodes();
   std::vector<Vec3> b(nodes.size()), v(nodes.size());
   for (size_t k = 0; k < nodes.size(); ++k)
@@ -199,7 +199,7 @@ double aggregation_correction(Hierarchy& h) {
     HNode& n = nodes[k];
     if (!is_leaf_element(n)) continue;
     const Vec3 next = n.B + mul(c, v[k]);
-    const double scale = max_component(next);
+    const double scale = std::max(max_component(next), floor);
     if (scale > 0) largest = std::max(largest, max_component(abs3(next - n.B)) / scale);
     n.B = next;
   }

@@ -21,7 +21,9 @@ namespace walkrad {
 struct Link {
   uint32_t source = 0;
   double F = 0;
-  double spread = 0;  // how much the point form factor varies over the receiver (element links)
+  double spread = 0;  // how much the point form factor varies over the receiver: its range over an
+                      // element, its mean deviation between a cluster's children (transfer misplaced
+                      // by pushing it uniformly)
 };
 
 struct HNode {
@@ -82,7 +84,8 @@ class Hierarchy {
 
   // A point of the node for visibility and Monte Carlo transfers, from (u, v, w) ∈ [0,1)³: on an
   // element, by area; in a cluster, on one of its polygons chosen by area. normal: that surface's.
-  void sample(const HNode& n, double u, double v, double w, Vec3& point, Vec3& normal) const;
+  // child: set to which of a cluster's children holds the point (0 for an element).
+  void sample(const HNode& n, double u, double v, double w, Vec3& point, Vec3& normal, uint32_t* child = nullptr) const;
 
   size_t element_count() const { return element_count_; }
   // The element root of an input polygon.

@@ -56,7 +56,7 @@ struct BalanceStats {
 BalanceStats balance_closed_transport(Hierarchy& h, double tolerance = 1e-9, int max_iterations = 25);
 
 // One aggregation correction of the leaves' radiosity (indirect light on). Returns the largest
-// relative change of a leaf's B. Updates B and Bt everywhere.
-double aggregation_correction(Hierarchy& h);
+// change of a leaf's B relative to max(its B, floor). Updates B and Bt everywhere.
+double aggregation_correction(Hierarchy& h, double floor = 0);
 
 }  // namespace walkrad
