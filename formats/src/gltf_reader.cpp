@@ -218,6 +218,46 @@ struct Reader {
     scene.cameras.push_back(v);
   }
 
+  // KHR_lights_punctual: a node's light, placed at the node's origin, shining along its −Z.
+  void add_light(int node, const Mat4& world) {
+    const tinygltf::Node& n = model.nodes[node];
+    const auto ext = n.extensions.find("KHR_lights_punctual");
+    if (ext == n.extensions.end() || !ext->second.IsObject() || !ext->second.Has("light")) return;
+    const std::string place = "nodes[" + std::to_string(node) + "].extensions.KHR_lights_punctual";
+    const tinygltf::Value& index = ext->second.Get("light");
+    if (!index.IsInt() || index.GetNumberAsInt() < 0 || index.GetNumberAsInt() >= int(model.lights.size()))
+      throw InputError(file, place, "light index out of range");
+    const int li = index.GetNumberAsInt();
+    const tinygltf::Light& gl = model.lights[size_t(li)];
+    const std::string lplace = "extensions.KHR_lights_punctual.lights[" + std::to_string(li) + "]";
+    PunctualLight l;
+    l.name = !gl.name.empty() ? gl.name : !n.name.empty() ? n.name : "light-" + std::to_string(li);
+    if (gl.type == "point") {
+      l.type = PunctualLight::Type::point;
+    } else if (gl.type == "spot") {
+      l.type = PunctualLight::Type::spot;
+      l.inner_cone = gl.spot.innerConeAngle;
+      l.outer_cone = gl.spot.outerConeAngle;
+      if (!(l.inner_cone >= 0 && l.inner_cone < l.outer_cone && l.outer_cone <= kPi / 2))
+        throw InputError(file, lplace, "spot cones must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    } else {
+      throw InputError(file, lplace, "light type '" + gl.type + "' is not supported (point and spot are)", kExitMissingFeature);
+    }
+    const auto& c = gl.color;
+    const Vec3 colour(c.size() > 0 ? c[0] : 1.0, c.size() > 1 ? c[1] : 1.0, c.size() > 2 ? c[2] : 1.0);
+    l.intensity = colour * gl.intensity;
+    l.range = gl.range;
+    if (!is_finite(l.intensity) || std::min({l.intensity.x, l.intensity.y, l.intensity.z}) < 0 || !(l.range >= 0) ||
+        !std::isfinite(l.range))
+      throw InputError(file, lplace, "color, intensity and range must be finite and not negative");
+    l.position = transform_point(world, {0, 0, 0});
+    l.direction = transform_vector(world, {0, 0, -1});
+    if (!is_valid_vertex(l.position) || !(length(l.direction) > 0))
+      throw InputError(file, place, "the light's node transform is degenerate");
+    l.direction = normalize(l.direction);
+    scene.lights.push_back(l);
+  }
+
   void visit(int node, const Mat4& parent, int depth) {
     if (node < 0 || node >= int(model.nodes.size())) throw InputError(file, "nodes", "node index " + std::to_string(node) + " out of range");
     if (visited[node])
@@ -232,6 +272,7 @@ struct Reader {
       add_mesh(n.mesh, world);
     }
     if (n.camera >= 0 && n.camera < int(model.cameras.size())) add_camera(n.camera, world, node);
+    add_light(node, world);
     for (int child : n.children) visit(child, world, depth + 1);
   }
 };

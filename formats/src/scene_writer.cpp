@@ -163,6 +163,32 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
     model.nodes.push_back(node);
     gscene.nodes.push_back(int(model.nodes.size()) - 1);
   }
+  for (const PunctualLight& l : scene.lights) {  // KHR_lights_punctual: a node shining along its −Z
+    tinygltf::Light light;
+    light.name = l.name;
+    light.type = l.type == PunctualLight::Type::spot ? "spot" : "point";
+    const double peak = max_component(l.intensity);
+    light.intensity = peak;
+    light.color = peak > 0 ? std::vector<double>{l.intensity.x / peak, l.intensity.y / peak, l.intensity.z / peak}
+                           : std::vector<double>{1, 1, 1};
+    light.range = l.range;
+    light.spot.innerConeAngle = l.inner_cone;
+    light.spot.outerConeAngle = l.outer_cone;
+    model.lights.push_back(light);
+    Viewpoint frame;
+    frame.forward = l.direction;
+    frame.up = std::fabs(l.direction.y) < 0.9 ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+    frame.up = normalize(frame.up - l.direction * dot(frame.up, l.direction));
+    tinygltf::Node node;
+    node.name = l.name;
+    node.translation = {l.position.x, l.position.y, l.position.z};
+    node.rotation = camera_rotation(frame);
+    tinygltf::Value::Object light_ref;
+    light_ref["light"] = tinygltf::Value(int(model.lights.size()) - 1);
+    node.extensions["KHR_lights_punctual"] = tinygltf::Value(light_ref);
+    model.nodes.push_back(node);
+    gscene.nodes.push_back(int(model.nodes.size()) - 1);
+  }
   model.scenes.push_back(gscene);
   model.defaultScene = 0;
 

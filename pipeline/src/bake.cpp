@@ -9,7 +9,9 @@
 #include <functional>
 #include <memory>
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <tbb/info.h>
 
 #include "walkrad/formats/chunk_writer.h"
@@ -28,6 +30,7 @@
 #include "walkrad/pipeline/gauss_seidel.h"
 #include "walkrad/pipeline/hierarchical_solver.h"
 #include "walkrad/pipeline/hierarchy_mesher.h"
+#include "walkrad/pipeline/punctual_lights.h"
 #include "walkrad/pipeline/view_importance.h"
 #include "walkrad/pipeline/progress.h"
 #include "walkrad/pipeline/scene_cleanup.h"
@@ -141,12 +144,22 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   }
 
   phases.start("solve");
-  std::vector<Vec3> rho(n), emission(n);
+  std::vector<Vec3> rho(n), emission(n), direct(n);
   std::vector<double> area(n);
+  uint64_t light_rays = 0;
+  if (plan.punctual.on) {  // punctual lights: each element's irradiance, 4 × 4 points (punctual_lights.h)
+    std::vector<uint64_t> cast(n, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        direct[i] = direct_irradiance(sub->elements[i].shape, scene.lights, plan.visibility.on ? &rays : nullptr, 4, cast[i]).mean;
+    });
+    for (uint64_t c : cast) light_rays += c;
+  }
   for (size_t i = 0; i < n; ++i) {
     const Material& m = scene.materials[sub->elements[i].shape.material];
     rho[i] = m.reflectance;
-    emission[i] = m.emission;
+    // What punctual lights give an element, it reflects like emitted light: E + ρ D.
+    emission[i] = m.emission + mul(m.reflectance, direct[i]);
     area[i] = sub->elements[i].area;
   }
   SolveSettings solve;
@@ -156,11 +169,12 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   auto b = std::make_shared<std::vector<Vec3>>();
   if (plan.indirect.on) {
     *b = solve_gauss_seidel(f, area, rho, emission, solve, stats);
-  } else {  // direct light only: B = E + ρ F E, one gather
+  } else {  // direct light only: B = E + ρ (F E + D), one gather of the surfaces' own emission
     b->resize(n);
     for (size_t i = 0; i < n; ++i) {
       Vec3 h;
-      for (uint64_t k = f.row_start[i]; k < f.row_start[i + 1]; ++k) h += emission[f.column[k]] * f.value[k];
+      for (uint64_t k = f.row_start[i]; k < f.row_start[i + 1]; ++k)
+        h += scene.materials[sub->elements[f.column[k]].shape.material].emission * f.value[k];
       (*b)[i] = emission[i] + mul(rho[i], h);
     }
     stats.iterations = 1;
@@ -179,7 +193,7 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   r.surface_exposure = exposure_for(std::move(lum));
   r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
               {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations},
-              {"corrections", stats.corrections}};
+              {"corrections", stats.corrections}, {"light_rays", light_rays}};
   r.solver = {{"element_size", element_size}, {"converged", stats.converged}, {"last_update", stats.last_update},
               {"tolerance", s.tolerance}};
   r.energy = energy_json(energy.emitted, energy.absorbed);
@@ -242,6 +256,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.visibility = plan.visibility.on;
   hs.indirect = plan.indirect.on;
   hs.closed = plan.closure.on;
+  if (plan.punctual.on) hs.lights = &scene.lights;
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -280,7 +295,8 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
               {"unoccluded_links", stats.unoccluded_links}, {"monte_carlo_links", stats.monte_carlo_links},
-              {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()}};
+              {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()},
+              {"light_rays", stats.light_rays}, {"light_refinements", stats.light_refinements}};
   r.solver = {{"error_per_segment", error_per_segment(*h, hits, views.size())},
               {"iteration", s.solver},
               {"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
@@ -323,7 +339,9 @@ BakeSummary bake(const BakeSettings& s) {
   for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
   bool any_emitter = false;
   for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
-  if (!any_emitter) throw InputError(s.scene, "", "the scene has no emitter (no material with emission): nothing to bake");
+  for (const PunctualLight& l : input.lights) any_emitter = any_emitter || max_component(l.intensity) > 0;
+  if (!any_emitter)
+    throw InputError(s.scene, "", "the scene has no emitter (no material with emission, no punctual light): nothing to bake");
   // Fail on an unwritable destination before the long work, not after it.
   StagedOutput out(s.output);
 

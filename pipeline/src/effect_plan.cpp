@@ -17,7 +17,7 @@ bool in_front(const Polygon& a, const Vec3& normal, const Polygon& b, double tol
   return false;
 }
 
-// Does a polygon with ρ > 0 face an emitter (each in front of the other's plane)?
+// Does a polygon with ρ > 0 face an emitter (each in front of the other's plane) or a punctual light?
 bool reflector_faces_light(const Scene& scene, double tol) {
   std::vector<size_t> emitters;
   for (size_t i = 0; i < scene.polygons.size(); ++i)
@@ -26,6 +26,8 @@ bool reflector_faces_light(const Scene& scene, double tol) {
     const Polygon& p = scene.polygons[i];
     if (luminance(scene.materials[p.material].reflectance) <= 0) continue;
     const Vec3 n = polygon_normal(p);
+    for (const PunctualLight& l : scene.lights)
+      if (dot(l.position - p.v[0], n) > tol) return true;
     for (size_t e : emitters) {
       const Polygon& l = scene.polygons[e];
       if (e != i && in_front(p, n, l, tol) && in_front(l, polygon_normal(l), p, tol)) return true;
@@ -82,8 +84,10 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         bool view_independent, const std::string& method,
                         const std::map<std::string, std::string>& overrides) {
   for (const auto& [name, value] : overrides) {
-    if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure")
-      throw InputError("--effect", name, "unknown effect (known: indirect, visibility, importance, clusters, closure)",
+    if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
+        name != "punctual")
+      throw InputError("--effect", name,
+                       "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual)",
                        kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
@@ -93,9 +97,20 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.indirect.on = reflector_faces_light(scene, tol);
   plan.indirect.reason = plan.indirect.on ? "surfaces with reflectance > 0 face an emitter"
                                           : "no surface that light reaches reflects (ρ = 0): direct light only, B = E + one gather";
-  plan.visibility.on = !is_convex_enclosure(scene);
-  plan.visibility.reason = plan.visibility.on ? "some polygon lies behind another's plane: occlusion is possible"
-                                              : "a convex enclosure with nothing inside: no occlusion possible, no rays";
+  // A light outside the enclosure (behind a wall's plane) is hidden from the opposite walls by it.
+  bool lights_inside = true;
+  for (const PunctualLight& l : scene.lights)
+    for (const Polygon& p : scene.polygons) lights_inside = lights_inside && dot(l.position - p.v[0], polygon_normal(p)) >= -tol;
+  plan.visibility.on = !is_convex_enclosure(scene) || !lights_inside;
+  plan.visibility.reason = !is_convex_enclosure(scene) ? "some polygon lies behind another's plane: occlusion is possible"
+                           : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
+                                                : "a convex enclosure with nothing inside: no occlusion possible, no rays";
+  size_t points = 0, spots = 0;
+  for (const PunctualLight& l : scene.lights) (l.type == PunctualLight::Type::spot ? spots : points) += 1;
+  plan.punctual.on = !scene.lights.empty();
+  plan.punctual.reason = plan.punctual.on ? std::to_string(points) + " point and " + std::to_string(spots) +
+                                                " spot lights (KHR_lights_punctual): shot straight to the elements, a shadow ray per sample"
+                                          : "no punctual lights";
   plan.importance.on = !views.empty() && !view_independent;
   plan.importance.reason = views.empty() ? "no viewpoints: view-independent refinement (BF oracle)"
                            : view_independent ? "--view-independent: viewpoints used for exposure only"
@@ -115,6 +130,9 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   apply(plan.visibility, "visibility", overrides);
   apply(plan.importance, "importance", overrides);
   apply(plan.clusters, "clusters", overrides);
+  apply(plan.punctual, "punctual", overrides);
+  if (plan.punctual.on && scene.lights.empty())
+    throw InputError("--effect", "punctual", "the scene has no punctual lights", kExitBadArguments);
   if (plan.importance.on && views.empty())
     throw InputError("--effect", "importance", "importance needs viewpoints (--views or glTF cameras)", kExitBadArguments);
   if (plan.clusters.on && method != "hierarchical")
@@ -127,7 +145,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
 
 nlohmann::json EffectPlan::to_json() const {
   return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
-          {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)}};
+          {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
+          {"punctual", effect_json(punctual)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -138,6 +157,7 @@ std::string EffectPlan::explain() const {
   line("importance", importance);
   line("clusters", clusters);
   line("closure", closure);
+  line("punctual", punctual);
   return out;
 }
 

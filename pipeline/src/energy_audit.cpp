@@ -16,7 +16,7 @@ double EnergyAudit::imbalance() const {
 }
 
 void add_to_audit(EnergyAudit& audit, const AuditElement& e) {
-  audit.emitted += e.emission * e.area;
+  audit.emitted += (e.emission + e.direct) * e.area;
   audit.absorbed += mul(Vec3(1, 1, 1) - e.rho, e.H) * e.area;
   audit.escaped += e.B * (e.area * (1.0 - e.row_sum));
   audit.unconverged += (e.emission + mul(e.rho, e.H) - e.B) * e.area;
@@ -26,7 +26,7 @@ EnergyAudit audit_matrix(const FormFactorMatrix& f, const std::vector<double>& a
                          const std::vector<Vec3>& emission, const std::vector<Vec3>& radiosity) {
   EnergyAudit audit;
   for (size_t i = 0; i < f.rows(); ++i) {
-    AuditElement e{area[i], reflectance[i], emission[i], radiosity[i], {}, 0.0};
+    AuditElement e{area[i], reflectance[i], emission[i], radiosity[i], {}, 0.0, {}};
     for (uint64_t k = f.row_start[i]; k < f.row_start[i + 1]; ++k) {
       e.H += radiosity[f.column[k]] * f.value[k];
       e.row_sum += f.value[k];
@@ -47,7 +47,7 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double carried, const
   for (const Link& l : n.links) down += h[l.source].Bt * l.F;
   carried += sent[i];
   if (n.child_count == 0) {
-    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down * n.receive, carried * n.send});
+    if (!n.cluster) add_to_audit(audit, {n.area, n.rho, n.emission, n.B, down * n.receive + n.D, carried * n.send, n.D});
     return;
   }
   for (uint32_t k = 0; k < n.child_count; ++k) audit_node(h, h.child(n, k), down, carried, sent, audit);

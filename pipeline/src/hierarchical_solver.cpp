@@ -7,6 +7,7 @@
 
 #include "walkrad/pipeline/formfactor.h"
 #include "walkrad/pipeline/link_transport.h"
+#include "walkrad/pipeline/punctual_lights.h"
 #include "walkrad/pipeline/sampling.h"
 #include "walkrad/pipeline/shaft.h"
 #include "walkrad/pipeline/rounding.h"
@@ -52,9 +53,11 @@ class Solver {
   Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
       : h_(h), rays_(rays), s_(s), stats_(stats) {
     const HNode& root = h_[h_.root()];
+    // Punctual lights first: what they deliver to the surfaces counts in the power Φ that scales ε.
+    if (lights()) compute_missing_direct();
     Vec3 emitted;
     for (const HNode& n : h_.nodes())
-      if (!n.cluster) emitted += n.emission * n.area;
+      if (!n.cluster) emitted += (n.emission + n.D) * n.area;
     const double power = luminance(emitted);
     eps_ = s_.epsilon * power;
     stats_.epsilon_absolute = eps_;
@@ -63,7 +66,7 @@ class Solver {
     // emitter's: a closed dark room's last traces of light decay by ρ per sweep and would keep their
     // relative change until they underflow (3,853 sweeps in the junction scene).
     for (const HNode& n : h_.nodes())
-      if (!n.cluster) change_floor_ = std::max(change_floor_, 1e-9 * max_component(n.emission));
+      if (!n.cluster) change_floor_ = std::max(change_floor_, 1e-9 * max_component(n.emission + mul(n.rho, n.D)));
     // Importance: scaled so that Σ R = Σ A, then B·I·ρ·F and the BF oracle B·A·ρ·F share ε.
     importance_ = s_.use_importance && root.R > 0;
     stats_.oracle = importance_ ? "importance" : "BF";
@@ -76,6 +79,28 @@ class Solver {
     }
   }
 
+  // Elements split where the punctual lights' irradiance varies more than ε allows, level by level
+  // (the irradiance of each level's new elements computed in parallel; the splits in a fixed order).
+  void refine_for_lights() {
+    if (!lights()) return;
+    std::vector<uint32_t> frontier;
+    for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+      if (is_leaf_element(h_[i])) frontier.push_back(i);
+    std::vector<double> spread = direct_for(frontier);
+    while (!frontier.empty()) {
+      std::vector<uint32_t> next;
+      for (size_t k = 0; k < frontier.size(); ++k) {
+        const uint32_t i = frontier[k];
+        if (!splittable(i) || luminance(h_[i].rho) * spread[k] * weight(h_[i]) <= eps_) continue;
+        h_.subdivide(i);
+        ++stats_.light_refinements;
+        for (uint32_t c = 0; c < h_[i].child_count; ++c) next.push_back(h_.child(h_[i], c));
+      }
+      frontier = std::move(next);
+      spread = direct_for(frontier);
+    }
+  }
+
   // Rounds of refine → evaluate → solve. A round that adds no link solves to convergence; the
   // search stops only when a refinement pass over the converged solution adds none either (links
   // kept while B was still growing are checked again against the final B).
@@ -84,8 +109,13 @@ class Solver {
     for (int it = 0; it < s_.max_iterations; ++it) {
       IterationStats is;
       const size_t before = pending_.size();
-      if (it == 0) refine(h_.root(), h_.root(), nullptr);
-      else refine_existing();
+      if (it == 0) {
+        refine_for_lights();
+        refine(h_.root(), h_.root(), nullptr);
+      } else {
+        refine_existing();
+      }
+      if (lights()) compute_missing_direct();  // elements the refinement created
       is.new_links = pending_.size() - before;
       evaluate_pending(is);
       if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
@@ -135,6 +165,32 @@ class Solver {
 
  private:
   double weight(const HNode& n) const { return importance_ ? n.I : n.area; }
+  const std::vector<PunctualLight>* lights() const { return s_.lights && !s_.lights->empty() ? s_.lights : nullptr; }
+
+  // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
+  // parallel; returns each one's spread.
+  std::vector<double> direct_for(const std::vector<uint32_t>& elements) {
+    std::vector<double> spread(elements.size(), 0.0);
+    std::vector<uint64_t> rays(elements.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k != r.end(); ++k) {
+        HNode& n = h_[elements[k]];
+        const DirectIrradiance d = direct_irradiance(n.shape, *s_.lights, s_.visibility ? &rays_ : nullptr, 4, rays[k]);
+        n.D = d.mean;
+        n.D_known = true;
+        spread[k] = d.spread;
+      }
+    });
+    for (uint64_t r : rays) stats_.light_rays += r;
+    return spread;
+  }
+
+  void compute_missing_direct() {
+    std::vector<uint32_t> missing;
+    for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+      if (!h_[i].cluster && !h_[i].D_known) missing.push_back(i);
+    direct_for(missing);
+  }
 
   bool splittable(uint32_t i) const {
     const HNode& n = h_[i];
@@ -527,7 +583,7 @@ class Solver {
       bool clamped = false;
       H = leaf_irradiance(n, H, row_sum, &clamped);
       if (clamped) ++is.clamped_leaves;
-      const Vec3 b = n.emission + mul(n.rho, H);
+      const Vec3 b = n.emission + mul(n.rho, H + n.D);
       const double scale = std::max(max_component(b), change_floor_);
       if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
       // The residual of the leaf's equation before this update: |E + ρH − B| A.
@@ -535,8 +591,8 @@ class Solver {
       is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;
       n.B = b;
       n.Bt = b * n.send;
-      is.emitted += n.emission * n.area;
-      is.absorbed += mul(Vec3(1, 1, 1) - n.rho, H) * n.area;
+      is.emitted += (n.emission + n.D) * n.area;
+      is.absorbed += mul(Vec3(1, 1, 1) - n.rho, H + n.D) * n.area;
       return b;
     }
     Vec3 sum, sent;

@@ -180,14 +180,14 @@ double aggregation_correction(Hierarchy& h, double floor) {
   for (size_t k = 0; k < nodes.size(); ++k)
     if (is_leaf_element(nodes[k])) {
       b[k] = nodes[k].B;
-      v[k] = nodes[k].B - nodes[k].emission;
+      v[k] = nodes[k].B - nodes[k].emission - mul(nodes[k].rho, nodes[k].D);
     }
   const std::vector<Vec3> tb = apply_transport(h, b), tv = apply_transport(h, v);
   Vec3 num, den, total;
   for (size_t k = 0; k < nodes.size(); ++k) {  // sequential: a fixed order of sums
     const HNode& n = nodes[k];
     if (!is_leaf_element(n)) continue;
-    num += (n.emission + mul(n.rho, tb[k]) - n.B) * n.area;
+    num += (n.emission + mul(n.rho, tb[k] + n.D) - n.B) * n.area;
     den += (v[k] - mul(n.rho, tv[k])) * n.area;
     total += v[k] * n.area;
   }

@@ -54,11 +54,27 @@ struct Viewpoint {
   double aspect = 1.0;  // width / height
 };
 
+// A punctual light (glTF KHR_lights_punctual): a point, or a spot shining along `direction` with the
+// extension's smooth falloff between the inner and outer cone. Its intensity is read as radiant
+// intensity, W/sr per channel (colour × intensity, the candela read one for one as W/sr, as emissive
+// factors are read as radiance). range > 0: the extension's window, nothing beyond it.
+struct PunctualLight {
+  enum class Type { point, spot };
+  std::string name;
+  Type type = Type::point;
+  Vec3 position;
+  Vec3 direction{0, 0, -1};  // spot: unit
+  Vec3 intensity;            // W/sr per channel
+  double range = 0;          // metres; 0: unlimited
+  double inner_cone = 0, outer_cone = 0.7853981633974483;  // spot: radians, 0 ≤ inner < outer ≤ π/2
+};
+
 struct Scene {
   std::string source;  // the file it was read from
   std::vector<Material> materials;
   std::vector<Polygon> polygons;
   std::vector<Viewpoint> cameras;  // viewpoints found in the scene file itself (glTF camera nodes)
+  std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual (point and spot)
   uint64_t dropped_degenerate = 0;     // zero-area triangles dropped by the reader
   std::vector<std::string> warnings;  // what the reader changed or ignored, for the user
 

@@ -6,7 +6,11 @@
 //   importance  — only with viewpoints (and not --view-independent);
 //   clusters    — the hierarchical method's cluster links (always with it; none in the classic method);
 //   closure     — a closed scene (no ray from any surface escapes: every form factor row sums to 1),
-//                 where the hierarchical method normalises each leaf's row sum to 1.
+//                 where the hierarchical method balances each leaf's gather and send (link_transport.h);
+//   punctual    — point and spot lights (glTF KHR_lights_punctual), shot straight to the elements
+//                 (punctual_lights.h); off ignores them.
+// Indirect light and visibility take punctual lights into account (a reflector in front of one; a
+// light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
 // and manifest.json and report.json keep it.
 #pragma once
@@ -29,7 +33,7 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters, closure;
+  Effect indirect, visibility, importance, clusters, closure, punctual;
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
 };

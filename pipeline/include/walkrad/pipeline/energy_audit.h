@@ -35,6 +35,7 @@ struct AuditElement {
   double area = 0;
   Vec3 rho, emission, B, H;
   double row_sum = 0;  // the fraction of its radiosity that its links carry away (matrix: its row sum, by reciprocity)
+  Vec3 direct;         // irradiance from punctual lights (counted as emitted where it lands; H includes it)
 };
 void add_to_audit(EnergyAudit& audit, const AuditElement& e);
 

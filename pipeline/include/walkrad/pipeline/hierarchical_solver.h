@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "walkrad/formats/scene.h"
 #include "walkrad/pipeline/hierarchy.h"
 #include "walkrad/pipeline/ray_scene.h"
 
@@ -51,6 +52,9 @@ struct HierarchicalSettings {
   // Aggregation correction after every sweep (link_transport.h): removes the slow overall mode of
   // Gauss-Seidel at high reflectance (furnace ρ 0.99: 611 sweeps without).
   bool accelerate = true;
+  // Punctual lights (punctual_lights.h), shot straight to the elements: an element is split while the
+  // irradiance they give varies over it by more than ε allows (ρ · spread · W > ε Φ). Not owned.
+  const std::vector<PunctualLight>* lights = nullptr;
 };
 
 struct IterationStats {
@@ -71,6 +75,8 @@ struct HierarchicalStats {
   std::string oracle;                  // "importance" or "BF"
   double left_error_max = 0, left_error_sum = 0;  // B·W·ρ·F left on the final links (W)
   int corrections = 0;                 // aggregation corrections applied
+  uint64_t light_rays = 0;             // shadow rays towards punctual lights
+  uint64_t light_refinements = 0;      // elements split for the punctual lights' variation
   int balance_iterations = 0;          // Sinkhorn iterations (closed scenes), all rounds
   double balance_row_error = 0, balance_column_error = 0;  // after the last balance
   uint64_t balance_unbalanced = 0;     // leaves the last balance left alone (hidden, coincident)

@@ -45,6 +45,8 @@ struct HNode {
   Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
   double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
   double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
+  Vec3 D;                 // element: irradiance from punctual lights (punctual_lights.h), its area mean
+  bool D_known = false;   // D computed (new elements get theirs before they are solved)
   double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
   double R = 0;           // direct importance (leaf elements; summed up in clusters)
   double I = 0, Ig = 0;   // importance, importance gathered this iteration

@@ -12,7 +12,7 @@
 //   by Sinkhorn–Knopp iteration (Sinkhorn & Knopp 1967): alternately a_i = 1 / (row sum) and
 //   s_j = 1 / (power sent per unit emitted), until both hold.
 // - aggregation_correction: the slowest mode of Gauss-Seidel at high reflectance is the scene's overall
-//   level of reflected light; scaling the reflected radiosity v = B − E by the 1 + c that zeroes the
+//   level of reflected light; scaling the reflected radiosity v = B − E − ρD (D: punctual lights) by the 1 + c that zeroes the
 //   area-weighted residual removes it (Chatelin & Miranker 1982; the same correction as the classic
 //   solver's, gauss_seidel.h, here through the links).
 #pragma once
