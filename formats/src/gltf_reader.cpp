@@ -85,13 +85,39 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
   const auto ext = gm.extensions.find("KHR_materials_emissive_strength");
   if (ext != gm.extensions.end() && ext->second.Has("emissiveStrength"))
     strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+  // Transmission, read as diffuse: KHR_materials_diffuse_transmission splits the diffuse lobe,
+  // ρ = (1 − f) base colour, τ = f × diffuseTransmissionColorFactor; KHR_materials_transmission (thin
+  // glass, specular) is diffused here, ρ = (1 − t) base colour, τ = t × base colour.
+  const auto number = [&](const tinygltf::Value& v, const char* key, double fallback) {
+    return v.Has(key) && v.Get(key).IsNumber() ? v.Get(key).GetNumberAsDouble() : fallback;
+  };
+  const auto dt = gm.extensions.find("KHR_materials_diffuse_transmission");
+  const auto st = gm.extensions.find("KHR_materials_transmission");
+  if (dt != gm.extensions.end()) {
+    const double f = number(dt->second, "diffuseTransmissionFactor", 0.0);
+    Vec3 colour(1, 1, 1);
+    if (dt->second.Has("diffuseTransmissionColorFactor") && dt->second.Get("diffuseTransmissionColorFactor").IsArray() &&
+        dt->second.Get("diffuseTransmissionColorFactor").ArrayLen() == 3)
+      for (int k = 0; k < 3; ++k) colour[k] = dt->second.Get("diffuseTransmissionColorFactor").Get(k).GetNumberAsDouble();
+    if (!(f >= 0 && f <= 1)) throw InputError(file, place + ".extensions.KHR_materials_diffuse_transmission", "diffuseTransmissionFactor must lie in [0, 1]");
+    mat.transmittance = colour * f;
+    mat.reflectance = mat.reflectance * (1 - f);
+  } else if (st != gm.extensions.end()) {
+    const double t = number(st->second, "transmissionFactor", 0.0);
+    if (!(t >= 0 && t <= 1)) throw InputError(file, place + ".extensions.KHR_materials_transmission", "transmissionFactor must lie in [0, 1]");
+    mat.transmittance = mat.reflectance * t;
+    mat.reflectance = mat.reflectance * (1 - t);
+  }
   const auto& ef = gm.emissiveFactor;
   const Vec3 radiance = Vec3(ef.size() > 0 ? ef[0] : 0, ef.size() > 1 ? ef[1] : 0, ef.size() > 2 ? ef[2] : 0) * strength;
   mat.emission = radiance * kPi;  // E = π L for a Lambertian emitter
-  if (!is_finite(mat.reflectance) || !is_finite(mat.emission))
+  if (!is_finite(mat.reflectance) || !is_finite(mat.emission) || !is_finite(mat.transmittance))
     throw InputError(file, place, "colour factors must be finite");
   if (std::min({mat.reflectance.x, mat.reflectance.y, mat.reflectance.z}) < 0 || max_component(mat.reflectance) > 1)
     throw InputError(file, place, "baseColorFactor must lie in [0, 1]");
+  if (std::min({mat.transmittance.x, mat.transmittance.y, mat.transmittance.z}) < 0 ||
+      max_component(mat.transmittance + mat.reflectance) > 1 + 1e-12)
+    throw InputError(file, place, "reflectance + transmittance must lie in [0, 1] (energy cannot be created)");
   if (std::min({mat.emission.x, mat.emission.y, mat.emission.z}) < 0)
     throw InputError(file, place, "emission must not be negative");
   // ρ = 1 keeps energy forever and a closed scene never converges: cap it, and say so.

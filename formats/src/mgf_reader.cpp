@@ -436,10 +436,13 @@ class Reader {
     }
     if (m.rs > 0) ignored_["specular reflectance (rs)"].insert(mat.name);
     if (m.ts > 0) ignored_["specular transmittance (ts)"].insert(mat.name);
-    if (m.td > 0) ignored_["diffuse transmittance (td)"].insert(mat.name);
+    mat.transmittance = mgf::linear_srgb(m.td_c, m.td, &desaturated_r);
+    if (max_component(mat.reflectance + mat.transmittance) > 1 + 1e-9)
+      fail("material '" + mat.name + "': rd + td exceed 1 (a surface cannot send on more light than it receives)");
     if (m.sides == 0) unstated_sides_.insert(mat.name);
     Resolved r;
-    r.two_sided = (m.sides ? m.sides : options_.default_sides) == 2;
+    // A transmitting material's back side is its transmission twin (added by the pipeline).
+    r.two_sided = (m.sides ? m.sides : options_.default_sides) == 2 && !mat.transmits();
     r.emits = mat.emits();
     // The same name and values: the same scene material. The same name with other values (a
     // redefined material) gets a suffix.

@@ -45,6 +45,16 @@ tinygltf::Material material(const Material& m) {
   } else {
     g.emissiveFactor = {radiance.x, radiance.y, radiance.z};
   }
+  if (m.transmits()) {  // KHR_materials_diffuse_transmission: ρ = (1 − f) base colour, τ = f × colour
+    const double f = max_component(m.transmittance);
+    const Vec3 base = f < 1 ? m.reflectance / (1 - f) : Vec3{};
+    g.pbrMetallicRoughness.baseColorFactor = {std::min(base.x, 1.0), std::min(base.y, 1.0), std::min(base.z, 1.0), 1.0};
+    tinygltf::Value::Object ext;
+    ext["diffuseTransmissionFactor"] = tinygltf::Value(f);
+    ext["diffuseTransmissionColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
+        tinygltf::Value(m.transmittance.x / f), tinygltf::Value(m.transmittance.y / f), tinygltf::Value(m.transmittance.z / f)});
+    g.extensions["KHR_materials_diffuse_transmission"] = tinygltf::Value(ext);
+  }
   return g;
 }
 
@@ -87,9 +97,9 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
   tinygltf::Scene gscene;
   for (const Material& m : scene.materials) {
     model.materials.push_back(material(m));
-    if (model.materials.back().extensions.count("KHR_materials_emissive_strength") &&
-        model.extensionsUsed.empty())
-      model.extensionsUsed.push_back("KHR_materials_emissive_strength");
+    for (const auto& [name, value] : model.materials.back().extensions)
+      if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) == model.extensionsUsed.end())
+        model.extensionsUsed.push_back(name);
   }
 
   for (size_t mi = 0; mi < scene.materials.size(); ++mi) {

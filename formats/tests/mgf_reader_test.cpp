@@ -499,7 +499,8 @@ TEST(MgfReader, MaterialsTemplatesRedefinitionsAndSides) {
   EXPECT_EQ(stats.back_polygons, 1u);
   EXPECT_TRUE(has_warning(s, "specular reflectance (rs) ignored in 1 materials (plain)"));
   EXPECT_TRUE(has_warning(s, "specular transmittance (ts) ignored"));
-  EXPECT_TRUE(has_warning(s, "diffuse transmittance (td) ignored"));
+  EXPECT_NEAR(s.materials[3].transmittance.x, 0.1, 1e-3);  // td: diffuse transmission (read, not ignored)
+  EXPECT_FALSE(has_warning(s, "diffuse transmittance (td) ignored"));
   EXPECT_TRUE(has_warning(s, "1 materials do not state 'sides'"));
   // MGF's own default (two-sided) on request.
   const Scene both = load(kSquare + "m p =\n rd 0.5\nf q0 q1 q2 q3\n", nullptr, MgfOptions{0.02, 2, 50'000'000});

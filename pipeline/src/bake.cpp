@@ -36,6 +36,7 @@
 #include "walkrad/pipeline/scene_cleanup.h"
 #include "walkrad/pipeline/staged_output.h"
 #include "walkrad/pipeline/subdivision.h"
+#include "walkrad/pipeline/transmission.h"
 #include "walkrad/pipeline/vertex_mesher.h"
 
 #ifndef WALKRAD_VERSION
@@ -237,7 +238,8 @@ json error_per_segment(const Hierarchy& h, const std::vector<ViewHit>& hits, siz
 }
 
 MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
-                                const std::vector<Viewpoint>& views, const EffectPlan& plan, Phases& phases) {
+                                const std::vector<Viewpoint>& views, const EffectPlan& plan, const std::vector<uint32_t>& twins,
+                                Phases& phases) {
   auto h = std::make_shared<Hierarchy>(scene, tree);
   uint64_t view_rays = 0;
   std::vector<ViewHit> hits;
@@ -257,6 +259,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.indirect = plan.indirect.on;
   hs.closed = plan.closure.on;
   if (plan.punctual.on) hs.lights = &scene.lights;
+  if (plan.transmission.on) hs.twins = &twins;
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -308,7 +311,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   const IterationStats& last = stats.iterations.back();
   r.energy = energy_json(last.emitted, last.absorbed);
   r.energy["residual_w"] = vec_json(last.residual);
-  r.audit = audit_json(audit_hierarchy(*h));
+  r.audit = audit_json(audit_hierarchy(*h, plan.transmission.on ? &twins : nullptr));
   return r;
 }
 }  // namespace
@@ -348,13 +351,17 @@ BakeSummary bake(const BakeSettings& s) {
   phases.start("prepare");
   const Bounds bounds = input.bounds();
   ContactSplitStats split_stats;
-  const Scene scene = split_contacts(input, split_stats);
+  Scene scene = split_contacts(input, split_stats);
+  // Transmission is decided first: its twins (back faces) are geometry, in the rays and the tree.
+  const Effect transmission = plan_transmission(scene, s.method, s.effects);
+  const std::vector<uint32_t> twins = transmission.on ? add_transmission_twins(scene) : std::vector<uint32_t>{};
   const RayScene rays(scene);
   const ClusterTree tree = build_cluster_tree(scene);
-  const EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects);
+  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects);
+  plan.transmission = transmission;
   if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
   const MethodResult result = s.method == "classic" ? solve_classic(s, scene, rays, tree, bounds, plan, phases)
-                                                    : solve_hierarchical(s, scene, rays, tree, views, plan, phases);
+                                                    : solve_hierarchical(s, scene, rays, tree, views, plan, twins, phases);
 
   phases.start("exposure");
   uint64_t exposure_rays = 0;

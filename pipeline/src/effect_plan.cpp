@@ -5,6 +5,7 @@
 
 #include "walkrad/formats/error.h"
 #include "walkrad/pipeline/sampling.h"
+#include "walkrad/pipeline/transmission.h"
 
 namespace walkrad {
 
@@ -85,9 +86,9 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         const std::map<std::string, std::string>& overrides) {
   for (const auto& [name, value] : overrides) {
     if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
-        name != "punctual")
+        name != "punctual" && name != "transmission")
       throw InputError("--effect", name,
-                       "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual)",
+                       "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission)",
                        kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
@@ -131,6 +132,11 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   apply(plan.importance, "importance", overrides);
   apply(plan.clusters, "clusters", overrides);
   apply(plan.punctual, "punctual", overrides);
+  plan.transmission = plan_transmission(scene, method, overrides);
+  if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {
+    plan.indirect.on = true;
+    plan.indirect.reason = "light passes through transmitting surfaces: it needs the gather";
+  }
   if (plan.punctual.on && scene.lights.empty())
     throw InputError("--effect", "punctual", "the scene has no punctual lights", kExitBadArguments);
   if (plan.importance.on && views.empty())
@@ -146,7 +152,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
 nlohmann::json EffectPlan::to_json() const {
   return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
           {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
-          {"punctual", effect_json(punctual)}};
+          {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -158,6 +164,7 @@ std::string EffectPlan::explain() const {
   line("clusters", clusters);
   line("closure", closure);
   line("punctual", punctual);
+  line("transmission", transmission);
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include "walkrad/pipeline/formfactor.h"
 #include "walkrad/pipeline/link_transport.h"
 #include "walkrad/pipeline/punctual_lights.h"
+#include "walkrad/pipeline/transmission.h"
 #include "walkrad/pipeline/sampling.h"
 #include "walkrad/pipeline/shaft.h"
 #include "walkrad/pipeline/rounding.h"
@@ -130,7 +131,7 @@ class Solver {
       for (int sweep = 0; sweep < sweeps; ++sweep) {
         ++is.sweeps;
         is.change = solve_sweep(is);
-        if (s_.accelerate && s_.indirect) {
+        if (s_.accelerate && s_.indirect && !s_.twins) {
           is.change = std::max(is.change, aggregation_correction(h_, change_floor_));
           ++stats_.corrections;
         }
@@ -165,6 +166,13 @@ class Solver {
 
  private:
   double weight(const HNode& n) const { return importance_ ? n.I : n.area; }
+
+  // τ of an element's material when transmission is simulated (else 0).
+  Vec3 transmittance(const HNode& n) const {
+    if (!s_.twins || n.cluster || (*s_.twins)[n.polygon] == kNoTwin) return {};
+    return h_.scene().materials[h_.scene().polygons[n.polygon].material].transmittance;
+  }
+  Vec3 twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
   const std::vector<PunctualLight>* lights() const { return s_.lights && !s_.lights->empty() ? s_.lights : nullptr; }
 
   // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
@@ -583,7 +591,10 @@ class Solver {
       bool clamped = false;
       H = leaf_irradiance(n, H, row_sum, &clamped);
       if (clamped) ++is.clamped_leaves;
-      const Vec3 b = n.emission + mul(n.rho, H + n.D);
+      h_[i].Hl = H;
+      const Vec3 tau = transmittance(n);
+      const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
+      const Vec3 b = n.emission + mul(n.rho, H + n.D) + through;
       const double scale = std::max(max_component(b), change_floor_);
       if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
       // The residual of the leaf's equation before this update: |E + ρH − B| A.
@@ -592,7 +603,7 @@ class Solver {
       n.B = b;
       n.Bt = b * n.send;
       is.emitted += (n.emission + n.D) * n.area;
-      is.absorbed += mul(Vec3(1, 1, 1) - n.rho, H + n.D) * n.area;
+      is.absorbed += mul(Vec3(1, 1, 1) - n.rho - tau, H + n.D) * n.area;
       return b;
     }
     Vec3 sum, sent;

@@ -15,8 +15,8 @@ bool contains(const HNode& e, const Vec3& p) {
 }
 }  // namespace
 
-uint32_t leaf_at(const Hierarchy& h, uint32_t node, const Vec3& p) {
-  while (h[node].child_count) {
+uint32_t leaf_at(const Hierarchy& h, uint32_t node, const Vec3& p, int max_depth) {
+  while (h[node].child_count && h[node].depth < max_depth) {
     uint32_t next = h.child(h[node], 0);
     for (uint32_t k = 0; k < h[node].child_count; ++k)
       if (contains(h[h.child(h[node], k)], p)) {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "temp_dir_test.h"
 #include "test_scenes.h"
 #include "walkrad/formats/bake_folder.h"
 #include "walkrad/formats/error.h"
@@ -38,14 +39,8 @@ Scene box_with_block() {
   return s;
 }
 
-class EffectPlanBake : public testing::Test {
+class EffectPlanBake : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(testing::TempDir()) / ("walkrad-effects-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Bakes the scene; returns report.json.
   nlohmann::json bake_scene(const Scene& scene, const std::string& name, const std::string& method,
@@ -72,7 +67,6 @@ class EffectPlanBake : public testing::Test {
       d = std::max(d, double(std::fabs(ma.radiosity[i] - mb.radiosity[i])));
     return d;
   }
-  fs::path dir_;
 };
 
 TEST(EffectPlan, ConvexEnclosureHasNoOcclusion) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "temp_dir_test.h"
 #include "test_scenes.h"
 #include "walkrad/formats/bake_folder.h"
 #include "walkrad/formats/error.h"
@@ -121,15 +122,8 @@ TEST(PunctualLights, SpotLightLightsOnlyItsCone) {
   EXPECT_GT(within, 4);
 }
 
-class PunctualBake : public testing::Test {
+class PunctualBake : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(testing::TempDir()) / ("walkrad-punctual-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
 };
 
 // Through a file: the glTF writer and reader keep the light (KHR_lights_punctual), the effect plan

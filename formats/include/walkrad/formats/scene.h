@@ -19,7 +19,10 @@ struct Material {
   std::string name;
   Vec3 reflectance;  // diffuse ρ per channel, in [0, 1)
   Vec3 emission;     // emitted radiosity E, W/m², per channel
+  Vec3 transmittance = {};  // diffuse τ per channel: the share of light arriving on one side that leaves the
+                       // other (lampshades, curtains); ρ + τ ≤ 1
   bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+  bool transmits() const { return transmittance.x > 0 || transmittance.y > 0 || transmittance.z > 0; }
 };
 
 // A planar, convex polygon with 3 or 4 vertices, counter-clockwise seen from its front (the side

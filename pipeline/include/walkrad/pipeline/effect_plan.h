@@ -8,7 +8,9 @@
 //   closure     — a closed scene (no ray from any surface escapes: every form factor row sums to 1),
 //                 where the hierarchical method balances each leaf's gather and send (link_transport.h);
 //   punctual    — point and spot lights (glTF KHR_lights_punctual), shot straight to the elements
-//                 (punctual_lights.h); off ignores them.
+//                 (punctual_lights.h); off ignores them;
+//   transmission — diffuse transmission where a material transmits (transmission.h; hierarchical
+//                 method only).
 // Indirect light and visibility take punctual lights into account (a reflector in front of one; a
 // light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
@@ -33,7 +35,7 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters, closure, punctual;
+  Effect indirect, visibility, importance, clusters, closure, punctual, transmission;
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
 };

@@ -35,7 +35,8 @@ struct AuditElement {
   double area = 0;
   Vec3 rho, emission, B, H;
   double row_sum = 0;  // the fraction of its radiosity that its links carry away (matrix: its row sum, by reciprocity)
-  Vec3 direct;         // irradiance from punctual lights (counted as emitted where it lands; H includes it)
+  Vec3 direct = {};    // irradiance from punctual lights (counted as emitted where it lands; H includes it)
+  Vec3 tau = {}, H_twin = {};  // transmittance, and what the other side receives (it passes τ H_twin through)
 };
 void add_to_audit(EnergyAudit& audit, const AuditElement& e);
 
@@ -45,7 +46,8 @@ EnergyAudit audit_matrix(const FormFactorMatrix& f, const std::vector<double>& a
 
 // The hierarchical method: the leaves of the hierarchy, each receiving along its own links and its
 // ancestors' (irradiance and row sums pushed down as the solver does, without its row-sum clamp).
-EnergyAudit audit_hierarchy(const Hierarchy& h);
+// twins: transmission twins per polygon (transmission.h), or nullptr.
+EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twins = nullptr);
 
 // report.json's "energy_audit": the terms above (W, per channel), the relative imbalance, and whether
 // it is within `bound` ("balanced"; 1e-4: what the stability suite holds closed scenes to with the

@@ -46,6 +46,7 @@ struct HNode {
   double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
   double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
   Vec3 D;                 // element: irradiance from punctual lights (punctual_lights.h), its area mean
+  Vec3 Hl;                // leaf element: the irradiance its links and its ancestors' gave, last solved
   bool D_known = false;   // D computed (new elements get theirs before they are solved)
   double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
   double R = 0;           // direct importance (leaf elements; summed up in clusters)

@@ -13,6 +13,7 @@ namespace walkrad {
 SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure);
 
 // The leaf element containing a point of an input polygon (for exposure and tests).
-uint32_t leaf_at(const Hierarchy& h, uint32_t polygon_root, const Vec3& p);
+// (max_depth: stop at that quadtree depth even if the node there has children.)
+uint32_t leaf_at(const Hierarchy& h, uint32_t polygon_root, const Vec3& p, int max_depth = 255);
 
 }  // namespace walkrad
