@@ -124,7 +124,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.closure.on = closed;
   plan.closure.reason = method != "hierarchical" ? "classic method: its uniform elements' row sums need no correction"
                         : closed ? "no ray from any surface escapes (" + std::to_string(closure_rays) +
-                                       " rays): each leaf's form factors are normalised to sum to 1"
+                                       " rays): each leaf's gather and send are balanced (link_transport.h)"
                                  : "rays escape the scene: row sums are left as computed";
   apply(plan.indirect, "indirect", overrides);
   apply(plan.closure, "closure", overrides);
