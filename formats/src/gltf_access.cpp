@@ -1,6 +1,7 @@
 #include "gltf_access.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -54,6 +55,20 @@ void append_floats(const tinygltf::Model& m, int accessor, int components, std::
   const size_t base = out.size();
   out.resize(base + v.count * components);
   for (size_t i = 0; i < v.count; ++i) std::memcpy(&out[base + i * components], v.data + i * v.stride, sizeof(float) * components);
+}
+
+bool append_uvs(const tinygltf::Model& m, int accessor, std::vector<float>& out, const std::string& file) {
+  const std::string place = "accessors[" + std::to_string(accessor) + "] (TEXCOORD)";
+  if (accessor < 0 || accessor >= int(m.accessors.size())) throw InputError(file, place, "no such accessor");
+  const tinygltf::Accessor& a = m.accessors[accessor];
+  if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != TINYGLTF_TYPE_VEC2) return false;
+  const View v = resolve(m, accessor, sizeof(float) * 2, file, place);
+  const size_t base = out.size();
+  out.resize(base + v.count * 2);
+  for (size_t i = 0; i < v.count; ++i) std::memcpy(&out[base + i * 2], v.data + i * v.stride, sizeof(float) * 2);
+  for (size_t i = base; i < out.size(); ++i)
+    if (!std::isfinite(out[i])) throw InputError(file, place, "texture coordinate " + std::to_string((i - base) / 2) + " is not finite");
+  return true;
 }
 
 void append_indices(const tinygltf::Model& m, int accessor, uint32_t offset, std::vector<uint32_t>& out,

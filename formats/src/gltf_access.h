@@ -15,6 +15,10 @@ namespace walkrad::gltf_access {
 void append_floats(const tinygltf::Model& m, int accessor, int components, std::vector<float>& out,
                    const std::string& file, const std::string& name);
 
+// Float VEC2 texture coordinates appended to out (u, v per vertex); false when the accessor is not
+// float VEC2 (normalised integer coordinates are not read).
+bool append_uvs(const tinygltf::Model& m, int accessor, std::vector<float>& out, const std::string& file);
+
 // Unsigned integer indices (u8, u16, u32), each plus offset, appended to out.
 void append_indices(const tinygltf::Model& m, int accessor, uint32_t offset, std::vector<uint32_t>& out,
                     const std::string& file);

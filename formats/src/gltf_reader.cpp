@@ -57,19 +57,29 @@ Mat4 local_matrix(const tinygltf::Node& n) {
 
 double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
-// Average linear colour of a decoded RGBA8 image (base colour textures are sRGB-encoded).
-Vec3 average_texture(const tinygltf::Model& m, int texture) {
-  if (texture < 0 || texture >= int(m.textures.size())) return {1, 1, 1};
+// A glTF texture decoded to linear RGB (base colour and emissive textures are sRGB-encoded) and kept in
+// the scene; returns its index there, or −1 when it has no decodable 8-bit image.
+int32_t load_texture(const tinygltf::Model& m, int texture, Scene& scene) {
+  if (texture < 0 || texture >= int(m.textures.size())) return -1;
   const int source = m.textures[texture].source;
-  if (source < 0 || source >= int(m.images.size())) return {1, 1, 1};
+  if (source < 0 || source >= int(m.images.size())) return -1;
   const tinygltf::Image& img = m.images[source];
-  if (img.image.empty() || img.component < 3 || img.bits != 8) return {1, 1, 1};
+  if (img.image.empty() || img.component < 3 || img.bits != 8 || img.width <= 0 || img.height <= 0 ||
+      size_t(img.width) * size_t(img.height) * size_t(img.component) != img.image.size())
+    return -1;
+  Texture t;
+  t.width = uint32_t(img.width);
+  t.height = uint32_t(img.height);
+  const size_t pixels = size_t(img.width) * size_t(img.height);
+  t.rgb.resize(pixels * 3);
   Vec3 sum;
-  const size_t pixels = img.image.size() / img.component;
-  for (size_t i = 0; i < pixels; ++i)
-    sum += Vec3(srgb_to_linear(img.image[i * img.component] / 255.0), srgb_to_linear(img.image[i * img.component + 1] / 255.0),
-                srgb_to_linear(img.image[i * img.component + 2] / 255.0));
-  return pixels ? sum / double(pixels) : Vec3{1, 1, 1};
+  for (size_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < 3; ++c) t.rgb[i * 3 + c] = float(srgb_to_linear(img.image[i * img.component + c] / 255.0));
+    sum += Vec3(t.rgb[i * 3], t.rgb[i * 3 + 1], t.rgb[i * 3 + 2]);
+  }
+  t.mean = sum / double(pixels);
+  scene.textures.push_back(std::move(t));
+  return int32_t(scene.textures.size()) - 1;
 }
 
 Material convert_material(const tinygltf::Model& m, int index, Scene& scene, const std::string& file) {
@@ -79,8 +89,10 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
   mat.name = gm.name.empty() ? "material-" + std::to_string(index) : gm.name;
   const auto& bc = gm.pbrMetallicRoughness.baseColorFactor;
   mat.reflectance = {bc.size() > 0 ? bc[0] : 1.0, bc.size() > 1 ? bc[1] : 1.0, bc.size() > 2 ? bc[2] : 1.0};
-  if (gm.pbrMetallicRoughness.baseColorTexture.index >= 0)
-    mat.reflectance = mul(mat.reflectance, average_texture(m, gm.pbrMetallicRoughness.baseColorTexture.index));
+  if (gm.pbrMetallicRoughness.baseColorTexture.index >= 0) {
+    mat.reflectance_texture = load_texture(m, gm.pbrMetallicRoughness.baseColorTexture.index, scene);
+    if (mat.reflectance_texture >= 0) mat.reflectance = mul(mat.reflectance, scene.textures[size_t(mat.reflectance_texture)].mean);
+  }
   double strength = 1.0;
   const auto ext = gm.extensions.find("KHR_materials_emissive_strength");
   if (ext != gm.extensions.end() && ext->second.Has("emissiveStrength"))
@@ -111,6 +123,10 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
   const auto& ef = gm.emissiveFactor;
   const Vec3 radiance = Vec3(ef.size() > 0 ? ef[0] : 0, ef.size() > 1 ? ef[1] : 0, ef.size() > 2 ? ef[2] : 0) * strength;
   mat.emission = radiance * kPi;  // E = π L for a Lambertian emitter
+  if (gm.emissiveTexture.index >= 0) {
+    mat.emission_texture = load_texture(m, gm.emissiveTexture.index, scene);
+    if (mat.emission_texture >= 0) mat.emission = mul(mat.emission, scene.textures[size_t(mat.emission_texture)].mean);
+  }
   if (!is_finite(mat.reflectance) || !is_finite(mat.emission) || !is_finite(mat.transmittance))
     throw InputError(file, place, "colour factors must be finite");
   if (std::min({mat.reflectance.x, mat.reflectance.y, mat.reflectance.z}) < 0 || max_component(mat.reflectance) > 1)
@@ -130,10 +146,36 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
   return mat;
 }
 
+// The affine texture-coordinate map of a triangle from its corners' (u, v): with the barycentric
+// gradients ∇λ1 = (e2 × n) / |n|², ∇λ2 = (n × e1) / |n|² (e1 = v1 − v0, e2 = v2 − v0, n = e1 × e2).
+UvMap uv_map(const Polygon& t, const float u[3], const float v[3]) {
+  const Vec3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0], n = cross(e1, e2);
+  const double n2 = dot(n, n);
+  UvMap m;
+  if (!(n2 > 0)) return m;
+  const Vec3 g1 = cross(e2, n) / n2, g2 = cross(n, e1) / n2;
+  m.a_u = g1 * double(u[1] - u[0]) + g2 * double(u[2] - u[0]);
+  m.a_v = g1 * double(v[1] - v[0]) + g2 * double(v[2] - v[0]);
+  m.b_u = u[0] - dot(m.a_u, t.v[0]);
+  m.b_v = v[0] - dot(m.a_v, t.v[0]);
+  m.valid = is_finite(m.a_u) && is_finite(m.a_v) && std::isfinite(m.b_u) && std::isfinite(m.b_v);
+  return m;
+}
+
+// Two triangles' texture maps agree on their shared quad (so it can be one polygon): the second's
+// corners map to the same (u, v) under the first's map, within 1e-6 texel-space units.
+bool same_uv(const Polygon& a, const Polygon& b) {
+  if (a.uv.valid != b.uv.valid) return false;
+  if (!a.uv.valid) return true;
+  for (int k = 0; k < 3; ++k)
+    if (std::fabs(a.uv.u(b.v[k]) - b.uv.u(b.v[k])) > 1e-6 || std::fabs(a.uv.v(b.v[k]) - b.uv.v(b.v[k])) > 1e-6) return false;
+  return true;
+}
+
 // Merges consecutive triangles (a, b) sharing an edge in opposite directions into one planar
 // convex quad: fewer, better-shaped elements (a quad splits into 4 quads, not slivers).
 bool merge_quad(const Polygon& a, const Polygon& b, Polygon& quad) {
-  if (a.material != b.material) return false;
+  if (a.material != b.material || !same_uv(a, b)) return false;
   for (int i = 0; i < 3; ++i) {
     const Vec3 u = a.v[i], v = a.v[(i + 1) % 3], p = a.v[(i + 2) % 3];
     for (int j = 0; j < 3; ++j) {
@@ -143,6 +185,7 @@ bool merge_quad(const Polygon& a, const Polygon& b, Polygon& quad) {
       quad.count = 4;
       quad.material = a.material;
       quad.source = a.source;
+      quad.uv = a.uv;
       const Vec3 n = polygon_normal(a);
       const double size = std::max(length(q - p), length(v - u));
       // Planar to 1e-6 of the quad's size, or to the rounding of float positions (2^-23 of the
@@ -197,6 +240,18 @@ struct Reader {
       if (scene.polygons.size() + idx.size() / 3 > kMaxGltfPolygons)
         throw InputError(file, place, "the scene has more than " + std::to_string(kMaxGltfPolygons) + " triangles", kExitLimitReached);
       const uint32_t material = material_for(prim.material);
+      // Texture coordinates where the material has a texture (float VEC2; else its average is used).
+      std::vector<float> uv;
+      const Material& mat = scene.materials[material];
+      if (mat.reflectance_texture >= 0 || mat.emission_texture >= 0) {
+        const tinygltf::Material& gm = model.materials[size_t(prim.material)];
+        const int set = gm.pbrMetallicRoughness.baseColorTexture.index >= 0 ? gm.pbrMetallicRoughness.baseColorTexture.texCoord
+                                                                           : gm.emissiveTexture.texCoord;
+        const auto tc = prim.attributes.find("TEXCOORD_" + std::to_string(set));
+        if (tc == prim.attributes.end() || !gltf_access::append_uvs(model, tc->second, uv, file))
+          scene.warnings.push_back(place + ": no float TEXCOORD_" + std::to_string(set) + " for its material's texture: the texture's average is used");
+        if (uv.size() / 2 != p.size() / 3) uv.clear();
+      }
 
       Polygon pending;
       bool has_pending = false;
@@ -216,6 +271,14 @@ struct Reader {
                                  " (after the node transforms)");
         }
         if (polygon_area(tri) <= 0) { ++scene.dropped_degenerate; continue; }
+        if (!uv.empty()) {
+          float tu[3], tv[3];
+          for (int k = 0; k < 3; ++k) {
+            tu[k] = uv[idx[t + k] * 2];
+            tv[k] = uv[idx[t + k] * 2 + 1];
+          }
+          tri.uv = uv_map(tri, tu, tv);
+        }
         Polygon quad;
         if (has_pending && pending.count == 3 && merge_quad(pending, tri, quad)) { pending = quad; continue; }
         flush();

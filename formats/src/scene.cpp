@@ -1,5 +1,7 @@
 #include "walkrad/formats/scene.h"
 
+#include <cmath>
+
 namespace walkrad {
 
 Vec3 polygon_area_normal(const Polygon& p) {
@@ -27,6 +29,25 @@ Bounds Scene::bounds() const {
   for (const Polygon& p : polygons)
     for (int i = 0; i < p.count; ++i) b.extend(p.v[i]);
   return b;
+}
+
+}  // namespace walkrad
+
+namespace walkrad {
+
+Vec3 Texture::at(double u, double v) const {
+  if (width == 0 || height == 0) return {1, 1, 1};
+  // Texel centres at (i + 0.5) / width; repeat wrapping.
+  const double x = u * width - 0.5, y = v * height - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  const double tx = x - fx, ty = y - fy;
+  auto wrap = [](long long i, uint32_t n) { return uint32_t(((i % static_cast<long long>(n)) + n) % n); };
+  auto texel = [&](long long i, long long j) {
+    const size_t k = (size_t(wrap(j, height)) * width + wrap(i, width)) * 3;
+    return Vec3(rgb[k], rgb[k + 1], rgb[k + 2]);
+  };
+  const long long i = (long long)fx, j = (long long)fy;
+  return (texel(i, j) * (1 - tx) + texel(i + 1, j) * tx) * (1 - ty) + (texel(i, j + 1) * (1 - tx) + texel(i + 1, j + 1) * tx) * ty;
 }
 
 }  // namespace walkrad

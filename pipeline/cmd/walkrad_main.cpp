@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
   std::vector<std::string> effect_overrides;
   bake_cmd->add_option("--effect", effect_overrides,
-                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission=on|off (repeatable)");
+                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures=on|off (repeatable)");
   bake_cmd->add_flag("--explain", bs.explain, "print the effect plan (what is simulated, and why) before solving");
   bool no_compression = false;
   bake_cmd->add_flag("--no-compression", no_compression, "write plain glTF chunks (default: Draco)");

@@ -36,6 +36,7 @@
 #include "walkrad/pipeline/scene_cleanup.h"
 #include "walkrad/pipeline/staged_output.h"
 #include "walkrad/pipeline/subdivision.h"
+#include "walkrad/pipeline/texture_sampling.h"
 #include "walkrad/pipeline/transmission.h"
 #include "walkrad/pipeline/vertex_mesher.h"
 
@@ -158,9 +159,11 @@ MethodResult solve_classic(const BakeSettings& s, const Scene& scene, const RayS
   }
   for (size_t i = 0; i < n; ++i) {
     const Material& m = scene.materials[sub->elements[i].shape.material];
-    rho[i] = m.reflectance;
+    SurfaceColour c{m.reflectance, m.emission};
+    if (plan.textures.on) c = element_colour(scene, sub->elements[i].shape);
+    rho[i] = c.reflectance;
     // What punctual lights give an element, it reflects like emitted light: E + ρ D.
-    emission[i] = m.emission + mul(m.reflectance, direct[i]);
+    emission[i] = c.emission + mul(c.reflectance, direct[i]);
     area[i] = sub->elements[i].area;
   }
   SolveSettings solve;
@@ -240,7 +243,7 @@ json error_per_segment(const Hierarchy& h, const std::vector<ViewHit>& hits, siz
 MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
                                 const std::vector<Viewpoint>& views, const EffectPlan& plan, const std::vector<uint32_t>& twins,
                                 Phases& phases) {
-  auto h = std::make_shared<Hierarchy>(scene, tree);
+  auto h = std::make_shared<Hierarchy>(scene, tree, plan.textures.on);
   uint64_t view_rays = 0;
   std::vector<ViewHit> hits;
   if (!views.empty()) {

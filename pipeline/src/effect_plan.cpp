@@ -5,6 +5,7 @@
 
 #include "walkrad/formats/error.h"
 #include "walkrad/pipeline/sampling.h"
+#include "walkrad/pipeline/texture_sampling.h"
 #include "walkrad/pipeline/transmission.h"
 
 namespace walkrad {
@@ -86,9 +87,10 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         const std::map<std::string, std::string>& overrides) {
   for (const auto& [name, value] : overrides) {
     if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
-        name != "punctual" && name != "transmission")
+        name != "punctual" && name != "transmission" && name != "textures")
       throw InputError("--effect", name,
-                       "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission)",
+                       "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission, "
+                       "textures)",
                        kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
@@ -133,6 +135,12 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   apply(plan.clusters, "clusters", overrides);
   apply(plan.punctual, "punctual", overrides);
   plan.transmission = plan_transmission(scene, method, overrides);
+  plan.textures.on = has_textures(scene);
+  plan.textures.reason = plan.textures.on ? "textured materials with texture coordinates: sampled per element"
+                                          : "no textured surface with texture coordinates: each material's average";
+  apply(plan.textures, "textures", overrides);
+  if (plan.textures.on && !has_textures(scene))
+    throw InputError("--effect", "textures", "the scene has no textured surface with texture coordinates", kExitBadArguments);
   if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {
     plan.indirect.on = true;
     plan.indirect.reason = "light passes through transmitting surfaces: it needs the gather";
@@ -152,7 +160,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
 nlohmann::json EffectPlan::to_json() const {
   return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
           {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
-          {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)}};
+          {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)},
+          {"textures", effect_json(textures)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -165,6 +174,7 @@ std::string EffectPlan::explain() const {
   line("closure", closure);
   line("punctual", punctual);
   line("transmission", transmission);
+  line("textures", textures);
   return out;
 }
 

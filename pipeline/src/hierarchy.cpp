@@ -4,10 +4,12 @@
 #include <cmath>
 
 #include "walkrad/pipeline/sampling.h"
+#include "walkrad/pipeline/texture_sampling.h"
 
 namespace walkrad {
 
-Hierarchy::Hierarchy(const Scene& scene, const ClusterTree& tree) : scene_(scene), tree_(tree) {
+Hierarchy::Hierarchy(const Scene& scene, const ClusterTree& tree, bool sample_textures)
+    : scene_(scene), tree_(tree), sample_textures_(sample_textures) {
   area_prefix_.resize(tree.polygons.size() + 1, 0.0);
   for (size_t k = 0; k < tree.polygons.size(); ++k)
     area_prefix_[k + 1] = area_prefix_[k] + polygon_area(scene.polygons[tree.polygons[k]]);
@@ -30,7 +32,12 @@ uint32_t Hierarchy::add_element(const Polygon& shape, uint32_t polygon, int32_t 
   const Material& m = scene_.materials[shape.material];
   n.rho = m.reflectance;
   n.emission = m.emission;
-  n.B = n.Bt = m.emission;
+  if (sample_textures_) {
+    const SurfaceColour c = element_colour(scene_, shape);
+    n.rho = c.reflectance;
+    n.emission = c.emission;
+  }
+  n.B = n.Bt = n.emission;
   nodes_.push_back(n);
   ++element_count_;
   return uint32_t(nodes_.size() - 1);

@@ -14,6 +14,7 @@ void add_element(Subdivision& s, const Polygon& poly, uint32_t index, std::array
   e.shape.count = uint8_t(count);
   e.shape.material = poly.material;
   e.shape.source = poly.source;
+  e.shape.uv = poly.uv;
   for (int k = 0; k < count; ++k) e.shape.v[k] = s.vertices[corners[k]];
   e.corner = corners;
   e.normal = polygon_normal(e.shape);

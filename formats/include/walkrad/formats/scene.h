@@ -21,17 +21,40 @@ struct Material {
   Vec3 emission;     // emitted radiosity E, W/m², per channel
   Vec3 transmittance = {};  // diffuse τ per channel: the share of light arriving on one side that leaves the
                        // other (lampshades, curtains); ρ + τ ≤ 1
+  // Textures (Scene::textures, −1: none) that modulate reflectance and emission over a surface. The
+  // values above are already the texture's average times the factor; where a polygon has texture
+  // coordinates, elements take the texture's mean over their own area instead (texture.h).
+  int32_t reflectance_texture = -1, emission_texture = -1;
   bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
   bool transmits() const { return transmittance.x > 0 || transmittance.y > 0 || transmittance.z > 0; }
 };
 
 // A planar, convex polygon with 3 or 4 vertices, counter-clockwise seen from its front (the side
 // its normal points to). Only the front side exchanges light.
+// Texture coordinates on a planar polygon are an affine function of position: u = a_u · p + b_u,
+// v = a_v · p + b_v. Kept as that function, they survive any cut of the polygon unchanged.
+struct UvMap {
+  bool valid = false;
+  Vec3 a_u, a_v;
+  double b_u = 0, b_v = 0;
+  double u(const Vec3& p) const { return dot(a_u, p) + b_u; }
+  double v(const Vec3& p) const { return dot(a_v, p) + b_v; }
+};
+
 struct Polygon {
   std::array<Vec3, 4> v{};
   uint8_t count = 3;
   uint32_t material = 0;
   uint32_t source = 0;  // the input primitive it came from (glTF mesh index, MGF face line), for messages
+  UvMap uv = {};        // texture coordinates, where the material has a texture
+};
+
+// A texture in linear RGB (sRGB-decoded), sampled bilinearly with repeat (glTF's defaults).
+struct Texture {
+  uint32_t width = 0, height = 0;
+  std::vector<float> rgb;  // row-major, top row first (as images are stored; v = 0 at the top)
+  Vec3 mean;               // over all texels
+  Vec3 at(double u, double v) const;
 };
 
 // Readers refuse vertices beyond ±kMaxCoordinate metres (a million km): past it, areas and form
@@ -78,6 +101,7 @@ struct Scene {
   std::vector<Polygon> polygons;
   std::vector<Viewpoint> cameras;  // viewpoints found in the scene file itself (glTF camera nodes)
   std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual (point and spot)
+  std::vector<Texture> textures;      // reflectance and emission textures (Material::*_texture)
   uint64_t dropped_degenerate = 0;     // zero-area triangles dropped by the reader
   std::vector<std::string> warnings;  // what the reader changed or ignored, for the user
 

@@ -10,7 +10,9 @@
 //   punctual    — point and spot lights (glTF KHR_lights_punctual), shot straight to the elements
 //                 (punctual_lights.h); off ignores them;
 //   transmission — diffuse transmission where a material transmits (transmission.h; hierarchical
-//                 method only).
+//                 method only);
+//   textures    — reflectance and emission textures sampled per element where polygons have texture
+//                 coordinates (texture_sampling.h); off: each material's average.
 // Indirect light and visibility take punctual lights into account (a reflector in front of one; a
 // light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
@@ -35,7 +37,7 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters, closure, punctual, transmission;
+  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures;
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
 };

@@ -66,7 +66,8 @@ struct ViewHit {
 
 class Hierarchy {
  public:
-  Hierarchy(const Scene& scene, const ClusterTree& tree);
+  // sample_textures: elements take their textures' mean over their own area (texture_sampling.h).
+  Hierarchy(const Scene& scene, const ClusterTree& tree, bool sample_textures = false);
 
   const Scene& scene() const { return scene_; }
   const ClusterTree& tree() const { return tree_; }
@@ -105,6 +106,7 @@ class Hierarchy {
 
   const Scene& scene_;
   const ClusterTree& tree_;
+  bool sample_textures_ = false;
   std::vector<HNode> nodes_;
   std::vector<uint32_t> children_;
   std::vector<double> area_prefix_;  // prefix sums of polygon areas in ClusterTree::polygons order
