@@ -55,7 +55,11 @@ class Solver {
       : h_(h), rays_(rays), s_(s), stats_(stats) {
     const HNode& root = h_[h_.root()];
     // Punctual lights first: what they deliver to the surfaces counts in the power Φ that scales ε.
-    if (lights()) compute_missing_direct();
+    if (lights()) {  // every element is an input polygon's root here
+      for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+        if (!h_[i].cluster) light_frontier_.push_back(i);
+      light_spread_ = direct_for(light_frontier_);
+    }
     Vec3 emitted;
     for (const HNode& n : h_.nodes())
       if (!n.cluster) emitted += (n.emission + n.D) * n.area;
@@ -84,10 +88,8 @@ class Solver {
   // (the irradiance of each level's new elements computed in parallel; the splits in a fixed order).
   void refine_for_lights() {
     if (!lights()) return;
-    std::vector<uint32_t> frontier;
-    for (uint32_t i = 0; i < h_.nodes().size(); ++i)
-      if (is_leaf_element(h_[i])) frontier.push_back(i);
-    std::vector<double> spread = direct_for(frontier);
+    std::vector<uint32_t> frontier = std::move(light_frontier_);  // the roots, lit in the constructor
+    std::vector<double> spread = std::move(light_spread_);
     while (!frontier.empty()) {
       std::vector<uint32_t> next;
       for (size_t k = 0; k < frontier.size(); ++k) {
@@ -646,6 +648,8 @@ class Solver {
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
   double eps_ = 0, min_area_ = 0, change_ = 0, change_floor_ = 0;
+  std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
+  std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
   std::vector<Pending> pending_;
   static thread_local std::vector<double> kernel_scratch_;
