@@ -38,13 +38,17 @@ bool reflector_faces_light(const Scene& scene, double tol) {
   return false;
 }
 
-void apply(Effect& e, const std::string& name, const std::map<std::string, std::string>& overrides) {
+}  // namespace
+
+void apply_override(Effect& e, const std::string& name, const std::map<std::string, std::string>& overrides) {
   const auto it = overrides.find(name);
   if (it == overrides.end()) return;
   e.on = it->second == "on";
   e.forced = true;
   e.reason = "forced " + it->second + " (--effect " + name + "=" + it->second + "); the analysis said: " + e.reason;
 }
+
+namespace {
 
 nlohmann::json effect_json(const Effect& e) { return {{"on", e.on}, {"reason", e.reason}, {"forced", e.forced}}; }
 
@@ -104,8 +108,9 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   bool lights_inside = true;
   for (const PunctualLight& l : scene.lights)
     for (const Polygon& p : scene.polygons) lights_inside = lights_inside && dot(l.position - p.v[0], polygon_normal(p)) >= -tol;
-  plan.visibility.on = !is_convex_enclosure(scene) || !lights_inside;
-  plan.visibility.reason = !is_convex_enclosure(scene) ? "some polygon lies behind another's plane: occlusion is possible"
+  const bool convex = is_convex_enclosure(scene);  // O(n²): once
+  plan.visibility.on = !convex || !lights_inside;
+  plan.visibility.reason = !convex ? "some polygon lies behind another's plane: occlusion is possible"
                            : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
                                                 : "a convex enclosure with nothing inside: no occlusion possible, no rays";
   size_t points = 0, spots = 0;
@@ -128,17 +133,17 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         : closed ? "no ray from any surface escapes (" + std::to_string(closure_rays) +
                                        " rays): each leaf's gather and send are balanced (link_transport.h)"
                                  : "rays escape the scene: row sums are left as computed";
-  apply(plan.indirect, "indirect", overrides);
-  apply(plan.closure, "closure", overrides);
-  apply(plan.visibility, "visibility", overrides);
-  apply(plan.importance, "importance", overrides);
-  apply(plan.clusters, "clusters", overrides);
-  apply(plan.punctual, "punctual", overrides);
+  apply_override(plan.indirect, "indirect", overrides);
+  apply_override(plan.closure, "closure", overrides);
+  apply_override(plan.visibility, "visibility", overrides);
+  apply_override(plan.importance, "importance", overrides);
+  apply_override(plan.clusters, "clusters", overrides);
+  apply_override(plan.punctual, "punctual", overrides);
   plan.transmission = plan_transmission(scene, method, overrides);
   plan.textures.on = has_textures(scene);
   plan.textures.reason = plan.textures.on ? "textured materials with texture coordinates: sampled per element"
                                           : "no textured surface with texture coordinates: each material's average";
-  apply(plan.textures, "textures", overrides);
+  apply_override(plan.textures, "textures", overrides);
   if (plan.textures.on && !has_textures(scene))
     throw InputError("--effect", "textures", "the scene has no textured surface with texture coordinates", kExitBadArguments);
   if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {

@@ -57,15 +57,10 @@ Effect plan_transmission(const Scene& scene, const std::string& method, const st
              : method != "hierarchical"
                  ? std::to_string(count) + " polygons transmit, but the classic method does not simulate transmission (use the hierarchical one)"
                  : std::to_string(count) + " polygons transmit (diffuse transmission): each gets a back-facing twin that passes light through";
-  const auto it = overrides.find("transmission");
-  if (it != overrides.end()) {
-    if (it->second == "on" && (count == 0 || method != "hierarchical"))
-      throw InputError("--effect", "transmission", count == 0 ? "no material transmits" : "the classic method does not simulate transmission",
-                       kExitBadArguments);
-    e.on = it->second == "on";
-    e.forced = true;
-    e.reason = "forced " + it->second + " (--effect transmission=" + it->second + "); the analysis said: " + e.reason;
-  }
+  apply_override(e, "transmission", overrides);
+  if (e.on && (count == 0 || method != "hierarchical"))
+    throw InputError("--effect", "transmission", count == 0 ? "no material transmits" : "the classic method does not simulate transmission",
+                     kExitBadArguments);
   return e;
 }
 

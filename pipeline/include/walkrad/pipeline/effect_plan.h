@@ -47,6 +47,10 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         bool view_independent, const std::string& method,
                         const std::map<std::string, std::string>& overrides);
 
+// Applies an --effect override (NAME → "on" or "off", already checked) to e: forced, with the analysis's
+// reason kept.
+void apply_override(Effect& e, const std::string& name, const std::map<std::string, std::string>& overrides);
+
 // Whether every polygon lies on or in front of every other polygon's plane (tolerance relative to the
 // scene's size): then nothing can stand between two surfaces.
 bool is_convex_enclosure(const Scene& scene);
