@@ -11,6 +11,12 @@ if(WALKRAD_BUILD_PIPELINE)
   find_package(embree 3 CONFIG REQUIRED)
   find_package(meshoptimizer CONFIG REQUIRED)
   find_package(CLI11 CONFIG REQUIRED)
+  # OpenVDB (the extinction grid of volume clusters) ships only a Find module, which sets
+  # BUILD_SHARED_LIBS=ON in the caller's scope and needs Boost iostreams: keep ours.
+  set(_walkrad_shared_libs ${BUILD_SHARED_LIBS})
+  list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB)
+  find_package(OpenVDB REQUIRED COMPONENTS openvdb)
+  set(BUILD_SHARED_LIBS ${_walkrad_shared_libs})
 endif()
 
 if(WALKRAD_BUILD_RUNTIME)

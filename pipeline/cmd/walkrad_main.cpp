@@ -46,7 +46,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
   std::vector<std::string> effect_overrides;
   bake_cmd->add_option("--effect", effect_overrides,
-                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures=on|off (repeatable)");
+                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures|volumes=on|off (repeatable)");
+  bake_cmd->add_option("--penumbra-ratio", bs.volume_penumbra_ratio,
+                       "hierarchical: a link sees through a volume cluster where its objects are smaller than this × the "
+                       "link's penumbra width there")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  bake_cmd->add_option("--volume-min-polygons", bs.volume_min_polygons,
+                       "hierarchical: polygons a cluster of small objects needs to be a volume")
+      ->check(CLI::Range(uint32_t(2), uint32_t(1) << 30))->capture_default_str();
   bake_cmd->add_flag("--explain", bs.explain, "print the effect plan (what is simulated, and why) before solving");
   bool no_compression = false;
   bake_cmd->add_flag("--no-compression", no_compression, "write plain glTF chunks (default: Draco)");

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -25,6 +26,7 @@
 #include "walkrad/pipeline/effect_plan.h"
 #include "walkrad/pipeline/contact_split.h"
 #include "walkrad/pipeline/energy_audit.h"
+#include "walkrad/pipeline/extinction_grid.h"
 #include "walkrad/pipeline/exposure.h"
 #include "walkrad/pipeline/form_factor_matrix.h"
 #include "walkrad/pipeline/gauss_seidel.h"
@@ -39,6 +41,7 @@
 #include "walkrad/pipeline/texture_sampling.h"
 #include "walkrad/pipeline/transmission.h"
 #include "walkrad/pipeline/vertex_mesher.h"
+#include "walkrad/pipeline/volume_visibility.h"
 
 #ifndef WALKRAD_VERSION
 #define WALKRAD_VERSION "0.0.0"
@@ -65,6 +68,25 @@ std::string hash_file(const std::string& path) {
 }
 
 json vec_json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
+
+// Identifies what the extinction grid is made from: every polygon's corners and the volume settings
+// (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
+std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto add = [&](const void* data, size_t size) {
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    for (size_t k = 0; k < size; ++k) h = (h ^ bytes[k]) * 0x100000001b3ull;
+  };
+  for (const Polygon& p : scene.polygons) {
+    add(&p.count, sizeof p.count);
+    for (int k = 0; k < p.count; ++k) add(&p.v[size_t(k)], sizeof(Vec3));
+  }
+  add(&vs.min_polygons, sizeof vs.min_polygons);
+  add(&vs.feature_ratio, sizeof vs.feature_ratio);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
 
 void write_json(const std::string& path, const json& j) {
   std::ofstream out(path, std::ios::binary);
@@ -242,7 +264,7 @@ json error_per_segment(const Hierarchy& h, const std::vector<ViewHit>& hits, siz
 
 MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
                                 const std::vector<Viewpoint>& views, const EffectPlan& plan, const std::vector<uint32_t>& twins,
-                                Phases& phases) {
+                                const VolumeVisibility* volumes, Phases& phases) {
   auto h = std::make_shared<Hierarchy>(scene, tree, plan.textures.on);
   uint64_t view_rays = 0;
   std::vector<ViewHit> hits;
@@ -263,6 +285,7 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
   hs.closed = plan.closure.on;
   if (plan.punctual.on) hs.lights = &scene.lights;
   if (plan.transmission.on) hs.twins = &twins;
+  hs.volumes = volumes;
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -300,7 +323,9 @@ MethodResult solve_hierarchical(const BakeSettings& s, const Scene& scene, const
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
-              {"unoccluded_links", stats.unoccluded_links}, {"monte_carlo_links", stats.monte_carlo_links},
+              {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
+              {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},
+              {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()},
               {"light_rays", stats.light_rays}, {"light_refinements", stats.light_refinements}};
   r.solver = {{"error_per_segment", error_per_segment(*h, hits, views.size())},
@@ -324,7 +349,7 @@ json BakeSettings::to_json() const {
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
           {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
-          {"effects", effects}};
+          {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
 }
 
 BakeSummary bake(const BakeSettings& s) {
@@ -360,11 +385,55 @@ BakeSummary bake(const BakeSettings& s) {
   const std::vector<uint32_t> twins = transmission.on ? add_transmission_twins(scene) : std::vector<uint32_t>{};
   const RayScene rays(scene);
   const ClusterTree tree = build_cluster_tree(scene);
-  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects);
+  VolumeSettings volume_settings;
+  volume_settings.min_polygons = s.volume_min_polygons;
+  volume_settings.penumbra_ratio = s.volume_penumbra_ratio;
+  const VolumeClusters volume_clusters = s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{};
+  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects, &volume_clusters);
   plan.transmission = transmission;
   if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
-  const MethodResult result = s.method == "classic" ? solve_classic(s, scene, rays, tree, bounds, plan, phases)
-                                                    : solve_hierarchical(s, scene, rays, tree, views, plan, twins, phases);
+  // The extinction grid: reused from the previous bake in this folder when it was made from the same
+  // geometry and settings (its key), else rasterised.
+  ExtinctionGrid grid;
+  std::unique_ptr<RayScene> solid;
+  VolumeVisibility volume_visibility;
+  json volumes_report = {{"on", plan.volumes.on}};
+  if (plan.volumes.on) {
+    phases.start("volumes");
+    const std::string key = volume_key(scene, volume_settings);
+    const std::string previous = s.output + "/extinction.vdb";
+    bool reused = false;
+    if (std::filesystem::exists(previous)) {
+      try {
+        ExtinctionGrid old = ExtinctionGrid::read(previous);
+        if (old.metadata("geometry_key") == key) {
+          grid = std::move(old);
+          reused = true;
+        }
+      } catch (const InputError& e) {
+        std::fprintf(stderr, "walkrad: warning: %s: not reused (%s)\n", previous.c_str(), e.what());
+      }
+    }
+    if (!reused) grid = ExtinctionGrid::build(volume_clusters.boxes, ExtinctionGrid::choose_voxel_size(volume_clusters.boxes));
+    grid.write(out.path("extinction.vdb"), {{"geometry_key", key},
+                                           {"volume_clusters", std::to_string(volume_clusters.boxes.size())},
+                                           {"volume_polygons", std::to_string(volume_clusters.volume_polygons)},
+                                           {"min_polygons", std::to_string(volume_settings.min_polygons)},
+                                           {"feature_ratio", json(volume_settings.feature_ratio).dump()},
+                                           {"penumbra_ratio", json(volume_settings.penumbra_ratio).dump()}});
+    solid = std::make_unique<RayScene>(scene, volume_clusters.polygon_in_volume);
+    volume_visibility = {&volume_clusters, &grid, solid.get(), volume_settings.penumbra_ratio};
+    const ExtinctionGrid::Stats gs = grid.stats();
+    volumes_report = {{"on", true}, {"grid", reused ? "reused" : "built"}, {"file", "extinction.vdb"},
+                      {"clusters", volume_clusters.boxes.size()}, {"polygons", volume_clusters.volume_polygons},
+                      {"voxel_size_m", gs.voxel_size}, {"active_voxels", gs.active_voxels}, {"kappa_max", gs.kappa_max},
+                      {"min_polygons", volume_settings.min_polygons}, {"feature_ratio", volume_settings.feature_ratio},
+                      {"penumbra_ratio", volume_settings.penumbra_ratio}};
+  }
+  const MethodResult result = s.method == "classic"
+                                  ? solve_classic(s, scene, rays, tree, bounds, plan, phases)
+                                  : solve_hierarchical(s, scene, rays, tree, views, plan, twins,
+                                                       plan.volumes.on ? &volume_visibility : nullptr, phases);
 
   phases.start("exposure");
   uint64_t exposure_rays = 0;
@@ -435,6 +504,7 @@ BakeSummary bake(const BakeSettings& s) {
       {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
       {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
+      {"volumes", volumes_report},
   };
   write_json(out.path("report.json"), report);
   out.commit();

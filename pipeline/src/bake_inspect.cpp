@@ -9,6 +9,7 @@
 #include "walkrad/formats/bake_folder.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/manifest.h"
+#include "walkrad/pipeline/extinction_grid.h"
 
 namespace walkrad {
 
@@ -35,6 +36,17 @@ void inspect_bake(const std::string& folder, const std::string& mesh_json) {
     const nlohmann::json r = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
     if (r.is_object() && r.contains("total_seconds") && r.contains("method"))
       std::printf("  report: %s, %.2f s\n", r["method"].get<std::string>().c_str(), r["total_seconds"].get<double>());
+  }
+  const std::string vdb = folder + "/extinction.vdb";
+  if (std::filesystem::exists(vdb)) {
+    const ExtinctionGrid grid = ExtinctionGrid::read(vdb);
+    const ExtinctionGrid::Stats g = grid.stats();
+    const Vec3 size = g.bounds.diagonal();
+    std::printf("  extinction.vdb: %s volume clusters (%s polygons), voxel %.4g m, %llu active voxels over %.3g × %.3g × %.3g m,"
+                " kappa %.4g to %.4g 1/m, %llu bytes in memory; rule: objects < %s × penumbra width\n",
+                grid.metadata("volume_clusters").c_str(), grid.metadata("volume_polygons").c_str(), g.voxel_size,
+                static_cast<unsigned long long>(g.active_voxels), size.x, size.y, size.z, g.kappa_min, g.kappa_max,
+                static_cast<unsigned long long>(g.memory_bytes), grid.metadata("penumbra_ratio").c_str());
   }
   if (mesh_json.empty()) return;
   const ChunkMesh mesh = read_bake_mesh(folder);

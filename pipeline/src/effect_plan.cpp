@@ -88,13 +88,13 @@ bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast) {
 
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
                         bool view_independent, const std::string& method,
-                        const std::map<std::string, std::string>& overrides) {
+                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes) {
   for (const auto& [name, value] : overrides) {
     if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
-        name != "punctual" && name != "transmission" && name != "textures")
+        name != "punctual" && name != "transmission" && name != "textures" && name != "volumes")
       throw InputError("--effect", name,
                        "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission, "
-                       "textures)",
+                       "textures, volumes)",
                        kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
@@ -146,6 +146,26 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   apply_override(plan.textures, "textures", overrides);
   if (plan.textures.on && !has_textures(scene))
     throw InputError("--effect", "textures", "the scene has no textured surface with texture coordinates", kExitBadArguments);
+  const bool has_volumes = volumes && !volumes->empty();
+  plan.volumes.on = has_volumes && plan.visibility.on && method == "hierarchical";
+  if (method != "hierarchical") {
+    plan.volumes.reason = "classic method: exact rays only";
+  } else if (!has_volumes) {
+    plan.volumes.reason = "no cluster of many small separate objects (a volume): exact rays only";
+  } else {
+    const size_t n = scene.polygons.size();
+    plan.volumes.reason = std::to_string(volumes->boxes.size()) + " volume clusters hold " +
+                          std::to_string(volumes->volume_polygons) + " of " + std::to_string(n) +
+                          " polygons: links see through them where their objects are smaller than the penumbra";
+    if (!plan.visibility.on) plan.volumes.reason += "; but no occlusion is possible here";
+  }
+  apply_override(plan.volumes, "volumes", overrides);
+  if (plan.volumes.on && (!has_volumes || method != "hierarchical" || !plan.visibility.on))
+    throw InputError("--effect", "volumes",
+                     method != "hierarchical" ? "volumetric visibility exists only in the hierarchical method"
+                     : !has_volumes           ? "the scene has no volume cluster"
+                                              : "visibility is off: there is nothing to see through",
+                     kExitBadArguments);
   if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {
     plan.indirect.on = true;
     plan.indirect.reason = "light passes through transmitting surfaces: it needs the gather";
@@ -166,7 +186,7 @@ nlohmann::json EffectPlan::to_json() const {
   return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
           {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
           {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)},
-          {"textures", effect_json(textures)}};
+          {"textures", effect_json(textures)}, {"volumes", effect_json(volumes)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -180,6 +200,7 @@ std::string EffectPlan::explain() const {
   line("punctual", punctual);
   line("transmission", transmission);
   line("textures", textures);
+  line("volumes", volumes);
   return out;
 }
 

@@ -23,10 +23,11 @@ constexpr double kClusterCosine = 0.25;
 
 struct Pending {
   uint32_t receiver, source;
-  bool need_rays;
+  bool need_rays;   // Embree rays (against the solid scene when volume)
   int samples = 0;  // rays (or Monte Carlo samples) for this link
+  bool volume = false;  // volume clusters in the shaft stand in for their polygons (volume_visibility.h)
   double F = 0, spread = 0;
-  uint64_t rays = 0;
+  uint64_t rays = 0, grid_segments = 0;
 };
 
 // Distance between two boxes (0 when they overlap or touch).
@@ -252,8 +253,7 @@ class Solver {
     // Candidates between the two: the parent's list filtered by this pair's shaft.
     const Shaft shaft(h_[i].bounds, h_[j].bounds);
     const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
-    std::vector<uint32_t> candidates = parent ? filter_candidates(h_.tree(), shaft, *parent, ex_i, ex_j)
-                                              : shaft_candidates(h_.tree(), shaft, ex_i, ex_j);
+    std::vector<uint32_t> candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
 
     if (split) {
       const bool si = splittable(i), sj = splittable(j);
@@ -277,11 +277,47 @@ class Solver {
     }
     // More rays where more can block, and where the transfer matters more than ε (a link kept only
     // because neither end may split further).
+    // Volumes count as one blocker: their transmittance varies smoothly, not all or nothing.
+    size_t volumes = 0;
+    for (uint32_t c : candidates) volumes += (c & kVolumeTags) != 0;
+    const size_t blockers = candidates.size() - volumes + (volumes > 0);
     int samples = s_.rays;
-    if (candidates.size() > 4) samples *= 2;
-    if (candidates.size() > 64) samples *= 2;
+    if (blockers > 4) samples *= 2;
+    if (blockers > 64) samples *= 2;
     if (split) samples *= 2;
-    pending_.push_back({i, j, s_.visibility && !candidates.empty(), samples});
+    pending_.push_back({i, j, s_.visibility && blockers > size_t(volumes > 0), samples, s_.visibility && volumes > 0});
+  }
+
+  // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
+  // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
+  // rule accepts some volumes but another volume's polygons must block exactly is evaluated exactly
+  // throughout: the grid holds every volume, the solid scene none.
+  std::vector<uint32_t> occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
+                                  const std::vector<uint32_t>* parent) const {
+    const VolumeVisibility* v = s_.volumes;
+    if (!v || !s_.visibility)
+      return parent ? filter_candidates(h_.tree(), shaft, *parent, ex_i, ex_j) : shaft_candidates(h_.tree(), shaft, ex_i, ex_j);
+    const HNode& ri = h_[i];
+    const HNode& sj = h_[j];
+    const ClusterTree& tree = h_.tree();
+    const VolumeClusters& vc = *v->clusters;
+    VolumeTags tags{vc.node_in_volume, vc.polygon_in_volume, [&](uint32_t c) {
+                      const bool node = c & kVolumeNode;
+                      const uint32_t k = c & ~kVolumeTags;
+                      const Vec3 at = node ? tree.nodes[k].bounds.center() : tree.polygon_bounds[k].center();
+                      const double feature = node ? vc.node_feature[k] : vc.object_width[k];
+                      return feature < v->penumbra_ratio * penumbra_width(ri.center, 2 * ri.radius, sj.center, 2 * sj.radius, at);
+                    }};
+    std::vector<uint32_t> out = parent ? filter_candidates(tree, shaft, *parent, ex_i, ex_j, tags)
+                                       : shaft_candidates(tree, shaft, ex_i, ex_j, tags);
+    bool tagged = false, exact_volume = false;
+    for (uint32_t c : out) {
+      if (c & kVolumeTags) tagged = true;
+      else if (vc.polygon_in_volume[c]) exact_volume = true;
+    }
+    if (!tagged || !exact_volume) return out;
+    tags.see_through = [](uint32_t) { return false; };
+    return filter_candidates(tree, shaft, out, ex_i, ex_j, tags);
   }
 
   // Later rounds: links whose oracle now exceeds ε (B and I have changed) are split.
@@ -332,14 +368,21 @@ class Solver {
   void evaluate_pending(IterationStats& is) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
       std::vector<RayScene::Segment> segments;
-      std::vector<uint8_t> blocked;
+      std::vector<double> visible;
       std::vector<double> weights;
-      for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, blocked, weights);
+      for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
     });
     for (const Pending& p : pending_) {
       stats_.rays += p.rays;
       is.rays += p.rays;
-      if (!p.need_rays) ++stats_.unoccluded_links;
+      if (p.volume) {
+        ++stats_.volume_links;
+        stats_.grid_segments += p.grid_segments;
+      } else if (p.need_rays) {
+        ++stats_.exact_links;
+      } else {
+        ++stats_.unoccluded_links;
+      }
       if (h_[p.receiver].cluster || h_[p.source].cluster) ++stats_.monte_carlo_links;
       if (p.F > 0) {
         h_[p.receiver].links.push_back({p.source, p.F, p.spread});
@@ -349,7 +392,27 @@ class Solver {
     pending_.clear();
   }
 
-  void evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<uint8_t>& blocked,
+  // What of each segment arrives: 0 or 1 from Embree (against the solid scene when the link sees
+  // through volumes), times the transmittance through the extinction grid.
+  void visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const {
+    visible.assign(segments.size(), 1.0);
+    if (segments.empty()) return;
+    if (p.need_rays) {
+      std::vector<uint8_t>& blocked = blocked_scratch_;
+      blocked.assign(segments.size(), 0);
+      (p.volume ? *s_.volumes->solid : rays_).occluded(segments.data(), segments.size(), blocked.data());
+      p.rays = segments.size();
+      for (size_t k = 0; k < segments.size(); ++k)
+        if (blocked[k]) visible[k] = 0.0;
+    }
+    if (p.volume) {
+      for (size_t k = 0; k < segments.size(); ++k)
+        if (visible[k] > 0) visible[k] *= s_.volumes->grid->transmittance(segments[k].from, segments[k].to);
+      p.grid_segments = segments.size();
+    }
+  }
+
+  void evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
                 std::vector<double>& weights) const {
     const HNode& ri = h_[p.receiver];
     const HNode& sj = h_[p.source];
@@ -362,7 +425,7 @@ class Solver {
       // visibility from rays to stratified points of the source.
       const int order = quadrature_order(length(ri.center - sj.center), std::sqrt(ri.area), std::sqrt(sj.area));
       const std::vector<QuadraturePoint> pts = quadrature_points(ri.shape, order);
-      const int per_point = p.need_rays ? std::max(1, p.samples / int(pts.size())) : 0;
+      const int per_point = p.need_rays || p.volume ? std::max(1, p.samples / int(pts.size())) : 0;
       std::vector<double>& kernel = kernel_scratch_;
       kernel.clear();
       for (const QuadraturePoint& q : pts) {
@@ -376,8 +439,7 @@ class Solver {
           kernel.push_back(point_kernel(q.position, ri.normal, y, sj.normal));
         }
       }
-      blocked.assign(segments.size(), 0);
-      if (!segments.empty()) rays_.occluded(segments.data(), segments.size(), blocked.data());
+      visibility(p, segments, visible);
       // Control variate (unbiased): the exact unoccluded point form factor minus a Monte Carlo
       // estimate of its occluded part, (A_j/π) E[cos cos / r² · blocked]. Visibility as a fraction
       // of rays (even weighted) is biased where occluders sit near either end, and those biases
@@ -389,18 +451,17 @@ class Solver {
       size_t hidden = 0;
       for (size_t q = 0; q < pts.size(); ++q) {
         double occluded = 0;
-        for (int k = 0; k < per_point; ++k)
-          if (blocked[q * per_point + k]) {
-            occluded += kernel[q * per_point + k];
-            ++hidden;
-          }
+        for (int k = 0; k < per_point; ++k) {
+          const double v = visible[q * per_point + k];
+          occluded += kernel[q * per_point + k] * (1.0 - v);
+          hidden += v == 0.0;
+        }
         const double f = weights[q] - pts[q].weight * sj.area / kPi * (per_point ? occluded / per_point : 0.0);
         sum += f;
       }
       if (!segments.empty() && hidden == segments.size()) sum = 0;
       sum = std::max(0.0, sum);
       p.F = sum / ri.area;
-      p.rays = segments.size();
       // Variation of the point form factor over the receiver, from its quadrature points.
       double lo = INFINITY, hi = 0;
       for (size_t q = 0; q < pts.size(); ++q) {
@@ -439,18 +500,17 @@ class Solver {
       mc += kernel;
       ++facing;
       drawn_samples.back().value = kernel;
-      if (p.need_rays) {
+      if (p.need_rays || p.volume) {
         drawn_samples.back().segment = int32_t(segments.size());
         segments.push_back({pi + ni * offset, pj + nj * offset});
         weights.push_back(kernel);
       }
     }
-    blocked.assign(segments.size(), 0);
-    if (!segments.empty()) rays_.occluded(segments.data(), segments.size(), blocked.data());
-    if (ri.cluster) p.spread = misplaced(ri, drawn_samples, blocked);
+    visibility(p, segments, visible);
+    if (ri.cluster) p.spread = misplaced(ri, drawn_samples, visible);
     for (size_t k = 0; k < segments.size(); ++k) {
       weighted += weights[k];
-      if (!blocked[k]) open += weights[k];
+      open += weights[k] * visible[k];
     }
     // F = unoccluded − occluded part. The unoccluded form factor is exact for few polygon pairs and
     // the Monte Carlo mean otherwise; the occluded part, (1/N) Σ K · blocked, is an unbiased estimate
@@ -461,7 +521,6 @@ class Solver {
     // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
     const bool all_blocked = !segments.empty() && open == 0;
     p.F = all_blocked ? 0.0 : std::max(0.0, unoccluded - occluded);
-    p.rays = segments.size();
   }
 
   static constexpr uint64_t kExactClusterPairs = 64;
@@ -479,13 +538,13 @@ class Solver {
   // from the link's, beyond twice its statistical error (so that a uniformly lit cluster is not split
   // for noise). A child facing away or hidden behind others (a closed room's inner walls) gets nothing
   // of what the others get: the link's receiver is split where that matters (refine_existing).
-  static double misplaced(const HNode& receiver, const std::vector<ClusterSample>& samples, const std::vector<uint8_t>& blocked) {
+  static double misplaced(const HNode& receiver, const std::vector<ClusterSample>& samples, const std::vector<double>& visible) {
     constexpr uint32_t kMaxChildren = 8;
     if (receiver.child_count < 2 || receiver.child_count > kMaxChildren || samples.empty()) return 0.0;
     double sum[kMaxChildren] = {}, sq[kMaxChildren] = {}, count[kMaxChildren] = {};
     double total = 0;
     for (const ClusterSample& s : samples) {
-      const double v = s.segment >= 0 && blocked[size_t(s.segment)] ? 0.0 : s.value;
+      const double v = s.segment >= 0 ? s.value * visible[size_t(s.segment)] : s.value;
       sum[s.child] += v;
       sq[s.child] += v * v;
       count[s.child] += 1;
@@ -654,10 +713,12 @@ class Solver {
   std::vector<Pending> pending_;
   static thread_local std::vector<double> kernel_scratch_;
   static thread_local std::vector<ClusterSample> cluster_scratch_;
+  static thread_local std::vector<uint8_t> blocked_scratch_;
 };
 
 thread_local std::vector<double> Solver::kernel_scratch_;
 thread_local std::vector<Solver::ClusterSample> Solver::cluster_scratch_;
+thread_local std::vector<uint8_t> Solver::blocked_scratch_;
 
 }  // namespace
 

@@ -17,7 +17,11 @@ void check(RTCDevice device, const char* what) {
 
 }  // namespace
 
-RayScene::RayScene(const Scene& scene) {
+RayScene::RayScene(const Scene& scene) { build(scene, nullptr); }
+
+RayScene::RayScene(const Scene& scene, const std::vector<uint8_t>& exclude) { build(scene, &exclude); }
+
+void RayScene::build(const Scene& scene, const std::vector<uint8_t>* exclude) {
   const Bounds b = scene.bounds();
   origin_ = b.center();
   const double diag = std::max(length(b.diagonal()), 1e-30);
@@ -35,15 +39,27 @@ RayScene::RayScene(const Scene& scene) {
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
+  // Origin, scale and offset come from the whole scene: a solid scene answers like the full one.
+  std::vector<uint32_t> kept;
+  for (uint32_t i = 0; i < scene.polygons.size(); ++i)
+    if (!exclude || !(*exclude)[i]) kept.push_back(i);
+  if (exclude) prim_polygon_ = kept;
+  const size_t n = kept.size();
+  if (n > 0) add_quads(scene, kept);
+  rtcCommitScene(scene_);
+  check(device_, "building the scene");
+}
+
+void RayScene::add_quads(const Scene& scene, const std::vector<uint32_t>& kept) {
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
-  const size_t n = scene.polygons.size();
+  const size_t n = kept.size();
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), 4 * n));
   auto* quads = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
                                                                4 * sizeof(unsigned), n));
   check(device_, "allocating geometry");
   for (size_t i = 0; i < n; ++i) {
-    const Polygon& p = scene.polygons[i];
+    const Polygon& p = scene.polygons[kept[i]];
     for (int k = 0; k < 4; ++k) {
       const Vec3 v = (p.v[std::min(k, p.count - 1)] - origin_) * scale_;
       vertices[(4 * i + k) * 3 + 0] = float(v.x);
@@ -55,8 +71,6 @@ RayScene::RayScene(const Scene& scene) {
   rtcCommitGeometry(geom);
   rtcAttachGeometry(scene_, geom);
   rtcReleaseGeometry(geom);
-  rtcCommitScene(scene_);
-  check(device_, "building the scene");
 }
 
 RayScene::~RayScene() {
@@ -118,7 +132,7 @@ RayScene::Hit RayScene::intersect(const Vec3& origin, const Vec3& direction) con
   Hit h;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
   h.hit = true;
-  h.polygon = rh.hit.primID;
+  h.polygon = prim_polygon_.empty() ? rh.hit.primID : prim_polygon_[rh.hit.primID];
   h.position = origin + direction * double(rh.ray.tfar);
   return h;
 }

@@ -63,24 +63,46 @@ bool Shaft::overlaps(const Bounds& box) const {
   return true;
 }
 
-std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b) {
-  std::vector<uint32_t> out;
-  if (tree.nodes.empty()) return out;
-  std::vector<int32_t> stack = {0};
+namespace {
+
+// Depth-first from `start`, child 0 first: polygons come out in tree order. tags null: no volumes.
+void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_t exclude_a, uint32_t exclude_b,
+             const VolumeTags* tags, std::vector<uint32_t>& out) {
+  std::vector<int32_t> stack = {start};
   while (!stack.empty()) {
-    const ClusterNode& node = tree.nodes[stack.back()];
+    const int32_t index = stack.back();
+    const ClusterNode& node = tree.nodes[size_t(index)];
     stack.pop_back();
     if (!shaft.overlaps(node.bounds)) continue;
+    if (tags && tags->node[size_t(index)] && tags->see_through(uint32_t(index) | kVolumeNode)) {
+      out.push_back(uint32_t(index) | kVolumeNode);
+      continue;
+    }
     if (!node.leaf()) {
-      stack.push_back(node.child[1]);  // child 0 on top: polygons come out in tree order
+      stack.push_back(node.child[1]);
       stack.push_back(node.child[0]);
       continue;
     }
     for (uint32_t i = node.first; i < node.first + node.count; ++i) {
       const uint32_t p = tree.polygons[i];
-      if (p != exclude_a && p != exclude_b && shaft.overlaps(tree.polygon_bounds[p])) out.push_back(p);
+      if (p == exclude_a || p == exclude_b || !shaft.overlaps(tree.polygon_bounds[p])) continue;
+      out.push_back(tags && tags->polygon[p] && tags->see_through(p | kVolumePolygon) ? p | kVolumePolygon : p);
     }
   }
+}
+
+}  // namespace
+
+std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b) {
+  std::vector<uint32_t> out;
+  if (!tree.nodes.empty()) collect(tree, shaft, 0, exclude_a, exclude_b, nullptr, out);
+  return out;
+}
+
+std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b,
+                                       const VolumeTags& tags) {
+  std::vector<uint32_t> out;
+  if (!tree.nodes.empty()) collect(tree, shaft, 0, exclude_a, exclude_b, &tags, out);
   return out;
 }
 
@@ -89,6 +111,21 @@ std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& sh
   std::vector<uint32_t> out;
   for (uint32_t p : candidates)
     if (p != exclude_a && p != exclude_b && shaft.overlaps(tree.polygon_bounds[p])) out.push_back(p);
+  return out;
+}
+
+std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                        uint32_t exclude_a, uint32_t exclude_b, const VolumeTags& tags) {
+  std::vector<uint32_t> out;
+  for (uint32_t c : candidates) {
+    if (c & kVolumeNode) {  // kept whole if the rule still holds for this link, else opened
+      collect(tree, shaft, int32_t(c & ~kVolumeNode), exclude_a, exclude_b, &tags, out);
+      continue;
+    }
+    const uint32_t p = c & ~kVolumePolygon;
+    if (p == exclude_a || p == exclude_b || !shaft.overlaps(tree.polygon_bounds[p])) continue;
+    out.push_back((c & kVolumePolygon) && tags.see_through(c) ? c : p);
+  }
   return out;
 }
 

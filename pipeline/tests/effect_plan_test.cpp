@@ -14,6 +14,7 @@
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_writer.h"
 #include "walkrad/pipeline/bake.h"
+#include "walkrad/pipeline/cluster_tree.h"
 
 namespace walkrad {
 namespace {
@@ -72,6 +73,18 @@ class EffectPlanBake : public test::TempDirTest {
 TEST(EffectPlan, ConvexEnclosureHasNoOcclusion) {
   EXPECT_TRUE(is_convex_enclosure(lit_box(0.5)));
   EXPECT_FALSE(is_convex_enclosure(box_with_block()));
+}
+
+TEST(EffectPlan, NoVolumeClustersNoVolumetricVisibility) {
+  const Scene s = box_with_block();
+  const RayScene rays(s);
+  const ClusterTree tree = build_cluster_tree(s);
+  const VolumeClusters volumes = find_volume_clusters(s, tree, VolumeSettings{});
+  EXPECT_TRUE(volumes.empty());
+  const EffectPlan plan = plan_effects(s, rays, {}, false, "hierarchical", {}, &volumes);
+  EXPECT_FALSE(plan.volumes.on);
+  EXPECT_NE(plan.volumes.reason.find("no cluster of many small separate objects"), std::string::npos) << plan.volumes.reason;
+  EXPECT_THROW(plan_effects(s, rays, {}, false, "hierarchical", {{"volumes", "on"}}, &volumes), InputError);
 }
 
 TEST_F(EffectPlanBake, EmptyBoxCastsNoVisibilityRaysAndMatchesTheFullSolve) {

@@ -31,3 +31,24 @@ inline Scene closed_box(double s, Vec3 rho, Vec3 e) {
 }
 
 }  // namespace walkrad::test
+
+namespace walkrad::test {
+
+// A closed cube of side `side` centred at c, rotated by the orthonormal frame (u, v, w), faces
+// outwards, sharing its 8 corners between faces (one connected object).
+inline void add_cube(Scene& scene, Vec3 c, double side, Vec3 u, Vec3 v, Vec3 w, uint32_t material = 0) {
+  const double h = side / 2;
+  auto corner = [&](int i) { return c + u * ((i & 1) ? h : -h) + v * ((i & 2) ? h : -h) + w * ((i & 4) ? h : -h); };
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    Polygon p = quad(corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3]), material);
+    if (dot(polygon_normal(p), polygon_centroid(p) - c) < 0) std::swap(p.v[1], p.v[3]);  // outwards
+    scene.polygons.push_back(p);
+  }
+}
+
+inline void add_cube(Scene& scene, Vec3 c, double side, uint32_t material = 0) {
+  add_cube(scene, c, side, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), material);
+}
+
+}  // namespace walkrad::test

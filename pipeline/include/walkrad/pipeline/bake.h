@@ -1,8 +1,8 @@
 // bake: the offline pipeline end to end, as one function over plain settings (main() stays thin).
 // read scene + walkthrough → split polygons at contacts → solve (hierarchical: importance from the
 // viewpoints, refine/gather/push-pull over links; classic: uniform elements, full form factor matrix,
-// Gauss-Seidel) → exposure → vertex mesh → bake folder (manifest.json, chunk-NNNN.glb, report.json),
-// staged and swapped into place only when complete.
+// Gauss-Seidel) → exposure → vertex mesh → bake folder (manifest.json, chunk-NNNN.glb, report.json,
+// extinction.vdb when volume clusters are used), staged and swapped into place only when complete.
 #pragma once
 
 #include <map>
@@ -36,6 +36,11 @@ struct BakeSettings {
   bool progress = true;     // progress lines on stderr
   bool explain = false;     // print the effect plan (effect_plan.h) before solving
   std::map<std::string, std::string> effects;  // effect plan overrides: name → "on" / "off"
+  // Volumetric visibility (volume_clusters.h, volume_visibility.h): a cluster of at least
+  // volume_min_polygons small objects is a volume; a link sees through it where its objects are
+  // smaller than volume_penumbra_ratio × the link's penumbra width there.
+  uint32_t volume_min_polygons = 64;
+  double volume_penumbra_ratio = 1.0;
   BakeCaps caps;            // time and memory caps (not recorded: they do not change the result)
 
   nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)

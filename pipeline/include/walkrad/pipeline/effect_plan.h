@@ -12,7 +12,10 @@
 //   transmission — diffuse transmission where a material transmits (transmission.h; hierarchical
 //                 method only);
 //   textures    — reflectance and emission textures sampled per element where polygons have texture
-//                 coordinates (texture_sampling.h); off: each material's average.
+//                 coordinates (texture_sampling.h); off: each material's average;
+//   volumes     — volumetric visibility through clusters of many small objects (volume_clusters.h,
+//                 volume_visibility.h; hierarchical method, with visibility): only if the scene has such
+//                 clusters; off: exact rays everywhere.
 // Indirect light and visibility take punctual lights into account (a reflector in front of one; a
 // light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
@@ -27,6 +30,7 @@
 
 #include "walkrad/formats/scene.h"
 #include "walkrad/pipeline/ray_scene.h"
+#include "walkrad/pipeline/volume_clusters.h"
 
 namespace walkrad {
 
@@ -37,15 +41,16 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures;
+  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes;
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
 };
 
 // overrides: effect name → "on" or "off" (InputError naming --effect for an unknown name or value).
+// volumes: the scene's volume clusters (null: none looked for).
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
                         bool view_independent, const std::string& method,
-                        const std::map<std::string, std::string>& overrides);
+                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr);
 
 // Applies an --effect override (NAME → "on" or "off", already checked) to e: forced, with the analysis's
 // reason kept.

@@ -27,6 +27,7 @@
 #include "walkrad/formats/scene.h"
 #include "walkrad/pipeline/hierarchy.h"
 #include "walkrad/pipeline/ray_scene.h"
+#include "walkrad/pipeline/volume_visibility.h"
 
 namespace walkrad {
 
@@ -58,6 +59,8 @@ struct HierarchicalSettings {
   // Transmission twins per polygon (transmission.h; kNoTwin: none): a leaf of a transmitting polygon
   // adds τ × what its twin receives at its centroid. No aggregation correction then. Not owned.
   const std::vector<uint32_t>* twins = nullptr;
+  // Volumetric visibility through volume clusters (volume_visibility.h); null: exact rays only. Not owned.
+  const VolumeVisibility* volumes = nullptr;
 };
 
 struct IterationStats {
@@ -83,6 +86,11 @@ struct HierarchicalStats {
   int balance_iterations = 0;          // Sinkhorn iterations (closed scenes), all rounds
   double balance_row_error = 0, balance_column_error = 0;  // after the last balance
   uint64_t balance_unbalanced = 0;     // leaves the last balance left alone (hidden, coincident)
+  // Visibility per link: unoccluded_links (nothing in the shaft), exact_links (Embree rays against
+  // every polygon), volume_links (volume clusters as media, volume_visibility.h: transmittance through
+  // the grid, rays against the rest if anything else is in the shaft).
+  uint64_t exact_links = 0, volume_links = 0;
+  uint64_t grid_segments = 0;          // transmittance integrations through the extinction grid
 };
 
 // progress(message) is called after each round (may be empty).

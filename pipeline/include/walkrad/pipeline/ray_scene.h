@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <embree3/rtcore.h>
 
@@ -16,6 +17,9 @@ namespace walkrad {
 class RayScene {
  public:
   explicit RayScene(const Scene& scene);
+  // The scene without the polygons marked in exclude (same coordinates, offsets and rounding as the
+  // whole scene's RayScene): hits name the scene's polygon indices.
+  RayScene(const Scene& scene, const std::vector<uint8_t>& exclude);
   ~RayScene();
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
@@ -43,11 +47,15 @@ class RayScene {
   double offset() const { return offset_; }
 
  private:
+  void build(const Scene& scene, const std::vector<uint8_t>* exclude);
+  void add_quads(const Scene& scene, const std::vector<uint32_t>& polygons);
+
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   Vec3 origin_;  // subtracted from every coordinate before it reaches Embree
   double scale_ = 1;  // then multiplied by this power of two
   double offset_ = 0;
+  std::vector<uint32_t> prim_polygon_;  // with excluded polygons: Embree primitive → polygon
 };
 
 }  // namespace walkrad

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "walkrad/pipeline/cluster_tree.h"
@@ -38,5 +39,26 @@ std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& sha
 // The subset of candidates (a parent link's list) that overlaps a child link's shaft.
 std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
                                         uint32_t exclude_a, uint32_t exclude_b);
+
+// Volumetric visibility (volume_visibility.h): what lies in volume clusters and the multi-resolution
+// rule lets stand in as a medium is kept whole as one candidate, tagged: a ClusterTree node wholly in
+// volumes (its index with kVolumeNode), or a polygon in a volume (its index with kVolumePolygon).
+constexpr uint32_t kVolumeNode = 0x80000000u;
+constexpr uint32_t kVolumePolygon = 0x40000000u;
+constexpr uint32_t kVolumeTags = kVolumeNode | kVolumePolygon;
+
+struct VolumeTags {
+  const std::vector<uint8_t>& node;     // per tree node: every polygon below is in a volume
+  const std::vector<uint8_t>& polygon;  // per polygon: in a volume
+  std::function<bool(uint32_t tagged)> see_through;  // the rule, for a tagged candidate
+};
+
+// As above, with volume candidates kept whole where tags.see_through accepts them.
+std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b,
+                                       const VolumeTags& tags);
+// A parent's list (possibly tagged) for a child link: a tagged candidate the rule no longer accepts is
+// opened (a node into its polygons and the finer volume candidates the rule accepts).
+std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                        uint32_t exclude_a, uint32_t exclude_b, const VolumeTags& tags);
 
 }  // namespace walkrad
