@@ -43,6 +43,10 @@ for line in res.splitlines():
     path, value = line.rsplit(" ", 1)
     rms[os.path.basename(path)] = float(value)
 
+def ratio(x):
+    return f"{x:,.0f}" if x >= 100 else f"{x:.2f}"
+
+
 base_time = statistics.median(results["exact"])
 with open(os.path.join(out, "exact", "report.json")) as f:
     base_rays = json.load(f)["counts"]["visibility_rays"]
@@ -56,5 +60,5 @@ for label, name, _ in configs:
     t = statistics.median(results[name])
     rays = c["visibility_rays"]
     print(f"| {label} | {c['exact_links']:,} / {c['volume_links']:,} / {c['unoccluded_links']:,} | {rays:,} | "
-          f"{c['grid_segments']:,} | {t:.2f} | {base_time / t:.2f}× | {base_rays / max(rays, 1):,.0f}× | "
+          f"{c['grid_segments']:,} | {t:.2f} | {ratio(base_time / t)}× | {ratio(base_rays / max(rays, 1))}× | "
           f"{'—' if name == 'exact' else f'{100 * rms[name]:.2f}%'} |")
