@@ -209,7 +209,9 @@ double ExtinctionGrid::optical_depth(const Vec3& from, const Vec3& to) const {
       delta[k] = 1.0 / std::fabs(d[k]);
     }
   }
-  auto acc = g.grid->getConstAccessor();
+  // An unregistered accessor: the grid does not change while links are evaluated, and registering one
+  // per segment with the tree (a concurrent hash map shared by every thread) would serialise them.
+  openvdb::tree::ValueAccessor<const openvdb::FloatTree, /*IsSafe=*/false> acc(g.grid->constTree());
   double sum = 0, t = t0;
   const int limit = (g.hi[0] - g.lo[0]) + (g.hi[1] - g.lo[1]) + (g.hi[2] - g.lo[2]) + 4;
   for (int n = 0; n < limit; ++n) {
