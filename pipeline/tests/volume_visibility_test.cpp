@@ -39,8 +39,10 @@ class VolumeBake : public test::TempDirTest {
     ASSERT_EQ(std::system(cmd.c_str()), 0);
   }
 
-  nlohmann::json bake_hedge(const std::string& name, std::map<std::string, std::string> effects = {}, int threads = 2) {
+  nlohmann::json bake_hedge(const std::string& name, std::map<std::string, std::string> effects = {}, int threads = 2,
+                            double penumbra_ratio = 1.0) {
     BakeSettings s;
+    s.volume_penumbra_ratio = penumbra_ratio;
     s.scene = (dir_ / "dense-hedge.glb").string();
     s.views = (dir_ / "dense-hedge-walkthrough.json").string();
     s.output = (dir_ / name).string();
@@ -77,6 +79,12 @@ TEST_F(VolumeBake, WallAgreesWithExactRaysForFiveTimesFewerRays) {
   const std::vector<double> v = wall_image("volume"), e = wall_image("exact");
   const ErrorMeasures err = relative_errors(v, e);
   EXPECT_LT(err.rms, 0.10);
+
+  // A rule that accepts no volume: every link exact, the same chunks as with volumes off.
+  const nlohmann::json strict = bake_hedge("strict", {}, 2, 1e-9);
+  EXPECT_EQ(strict["counts"]["volume_links"].get<uint64_t>(), 0u);
+  EXPECT_EQ(strict["counts"]["visibility_rays"], ce["visibility_rays"]);
+  EXPECT_EQ(slurp(dir_ / "strict" / "chunk-0000.glb"), slurp(dir_ / "exact" / "chunk-0000.glb"));
 }
 
 TEST_F(VolumeBake, GridIsWrittenReusedAndIdenticalWithOneOrTwoThreads) {
