@@ -4,7 +4,8 @@
 difference of the wall's radiosity as the walkthrough's camera sees it (96 x 96 rays, through
 bench/walkrad_compare_bakes). Prints the table for docs/performance.md.
 
-Usage: bench/volumes.py [BUILD_DIR] [RUNS] [CUBES] [THREADS]   (default build, 3, 8400, 2)"""
+Usage: bench/volumes.py [BUILD_DIR] [RUNS] [OBJECTS] [THREADS] [cubes|leaves]   (default build, 3, 8400, 2,
+cubes; leaves: flat square leaves, open sheets)"""
 import json
 import os
 import statistics
@@ -16,10 +17,11 @@ build = sys.argv[1] if len(sys.argv) > 1 else "build"
 runs = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 cubes = sys.argv[3] if len(sys.argv) > 3 else "8400"
 threads = sys.argv[4] if len(sys.argv) > 4 else "2"
+kind = sys.argv[5] if len(sys.argv) > 5 else "cubes"
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-out = os.path.join(build, "bench-volumes")
+out = os.path.join(build, "bench-volumes" if kind == "cubes" else "bench-volumes-" + kind)
 walkrad = os.path.join(build, "pipeline/walkrad")
-subprocess.run([sys.executable, os.path.join(root, "examples/dense-hedge/make_dense_hedge.py"), "--cubes", cubes, out],
+subprocess.run([sys.executable, os.path.join(root, "examples/dense-hedge/make_dense_hedge.py"), "--cubes", cubes, *(["--leaves"] if kind == "leaves" else []), out],
                check=True)
 scene = os.path.join(out, "dense-hedge.glb")
 views = os.path.join(out, "dense-hedge-walkthrough.json")
@@ -50,7 +52,8 @@ def ratio(x):
 base_time = statistics.median(results["exact"])
 with open(os.path.join(out, "exact", "report.json")) as f:
     base_rays = json.load(f)["counts"]["visibility_rays"]
-print(f"{cubes} cubes ({12 * int(cubes)} triangles), {runs} runs each, {threads} threads; times are medians.\n")
+print(f"{cubes} {kind} ({(12 if kind == 'cubes' else 2) * int(cubes)} triangles), {runs} runs each, {threads} threads; "
+      "times are medians.\n")
 print("| visibility | links: exact / volume / unoccluded | Embree rays | grid integrations | bake (s) | time ratio | "
       "ray ratio | wall RMS vs exact |")
 print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")

@@ -9,8 +9,11 @@ triangles by default). The cubes' side is chosen so that the hedge's extinction 
 KAPPA (1/m): light crossing its 1 m depth keeps about exp(-KAPPA) of itself, and the wall behind it
 gets a soft shadow. The walkthrough is a camera between the hedge and the wall looking at the wall.
 
-Usage: make_dense_hedge.py [--cubes N] [--kappa K] [OUT_DIR]   (default 8400 cubes, kappa 1, this
-script's folder). Writes dense-hedge.glb and dense-hedge-walkthrough.json. Deterministic.
+With --leaves the objects are flat square leaves (2 triangles each, open sheets: both faces block, so
+A counts twice in kappa) instead of cubes.
+
+Usage: make_dense_hedge.py [--cubes N] [--kappa K] [--leaves] [OUT_DIR]   (default 8400 cubes, kappa 1,
+this script's folder). Writes dense-hedge.glb and dense-hedge-walkthrough.json. Deterministic.
 """
 import argparse
 import json
@@ -55,18 +58,26 @@ def cube(centre, side, r):
     return corners, triangles
 
 
+def leaf(centre, side, r):
+    """A flat square of side `side` in the rotated frame's xy plane: 4 corners, 2 triangles."""
+    h = side / 2
+    corners = [tuple(centre[k] + r[k][0] * x + r[k][1] * y for k in range(3)) for x, y in ((-h, -h), (h, -h), (h, h), (-h, h))]
+    return corners, [(0, 1, 2), (0, 2, 3)]
+
+
 def quad(a, b, c, d):
     return [a, b, c, d], [(0, 1, 2), (0, 2, 3)]
 
 
-def write(out_dir, cubes, kappa):
+def write(out_dir, cubes, kappa, leaves=False):
     volume = math.prod(HEDGE_HI[k] - HEDGE_LO[k] for k in range(3))
-    side = math.sqrt(4 * kappa * volume / (6 * cubes))  # A / 4V = kappa with A = 6 side² per cube
+    # kappa = A / 4V with A = 6 side² per cube, or 2 side² per leaf (both faces of an open sheet block).
+    side = math.sqrt(4 * kappa * volume / ((2 if leaves else 6) * cubes))
     rng = random.Random(20261122)
     leaves_pos, leaves_idx = [], []
     for _ in range(cubes):
         centre = [HEDGE_LO[k] + side + (HEDGE_HI[k] - HEDGE_LO[k] - 2 * side) * rng.random() for k in range(3)]
-        corners, triangles = cube(centre, side, rotation(rng))
+        corners, triangles = (leaf if leaves else cube)(centre, side, rotation(rng))
         base = len(leaves_pos)
         leaves_pos += corners
         leaves_idx += [base + i for t in triangles for i in t]
@@ -112,17 +123,19 @@ def write(out_dir, cubes, kappa):
     with open(os.path.join(out_dir, "dense-hedge-walkthrough.json"), "w") as f:
         json.dump(walkthrough, f, indent=1)
         f.write("\n")
-    return side, 12 * cubes
+    return side, (2 if leaves else 12) * cubes
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cubes", type=int, default=8400)
+    parser.add_argument("--cubes", "--objects", dest="cubes", type=int, default=8400, help="number of cubes (or leaves)")
     parser.add_argument("--kappa", type=float, default=1.0)
+    parser.add_argument("--leaves", action="store_true", help="flat square leaves instead of cubes")
     parser.add_argument("out_dir", nargs="?", default=os.path.dirname(os.path.abspath(__file__)))
     args = parser.parse_args()
-    side, triangles = write(args.out_dir, args.cubes, args.kappa)
-    print(f"dense-hedge.glb: {args.cubes} cubes of {side * 100:.2f} cm ({triangles} triangles), kappa {args.kappa} 1/m")
+    side, triangles = write(args.out_dir, args.cubes, args.kappa, args.leaves)
+    kind = "leaves" if args.leaves else "cubes"
+    print(f"dense-hedge.glb: {args.cubes} {kind} of {side * 100:.2f} cm ({triangles} triangles), kappa {args.kappa} 1/m")
 
 
 if __name__ == "__main__":
