@@ -20,7 +20,7 @@ struct Builder {
   ClusterTree& tree;
   std::vector<Vec3> centroid;
   uint32_t max_leaf;
-  Vec3 origin;            // the scene's lower corner
+  Vec3 origin{};          // the scene's lower corner
   double quantum = 0;     // positions and extents are compared in steps of this (see build)
 
   long long steps(double x) const { return std::llround(x / quantum); }
@@ -67,7 +67,7 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
   const uint32_t n = uint32_t(scene.polygons.size());
   tree.polygons.resize(n);
   tree.polygon_bounds.resize(n);
-  Builder b{scene, tree, std::vector<Vec3>(n), std::max(1u, max_leaf)};
+  Builder b{scene, tree, std::vector<Vec3>(n), std::max(1u, max_leaf), Vec3{}, 0.0};
   for (uint32_t i = 0; i < n; ++i) {
     tree.polygons[i] = i;
     tree.polygon_bounds[i] = polygon_bounds(scene.polygons[i]);
