@@ -91,7 +91,7 @@ std::vector<double> mean_receive(const Hierarchy& h) {
 
 Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* clamped) {
   const double s = row_sum * leaf.receive;
-  if (s > kMaxRowSum) {
+  if (s > kMaxRowSum && !leaf.balanced) {
     if (clamped) *clamped = true;
     return H * (leaf.receive / s);
   }
@@ -150,6 +150,7 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
   for (size_t k = 0; k < nodes.size(); ++k) {
     if (!is_leaf_element(nodes[k])) continue;
     balanced[k] = raw_rows[k] >= kMinRaw && raw_rows[k] <= kMaxRaw && raw_columns[k] >= kMinRaw && raw_columns[k] <= kMaxRaw;
+    h.nodes()[k].balanced = balanced[k];
     if (!balanced[k]) {
       h.nodes()[k].send = h.nodes()[k].receive = 1.0;
       ++stats.unbalanced;

@@ -18,6 +18,7 @@
 #include "walkrad/pipeline/cluster_tree.h"
 #include "walkrad/pipeline/hierarchical_solver.h"
 #include "walkrad/pipeline/hierarchy.h"
+#include "walkrad/pipeline/link_transport.h"
 #include "walkrad/pipeline/progress.h"
 
 namespace walkrad {
@@ -189,6 +190,27 @@ TEST(RefinementProgress, EstimatesTimeLeftFromTheShrinkingWave) {
   EXPECT_NEAR(refinement_seconds_left(100, 10, 9.0), 1.0, 1e-12);
   EXPECT_LT(refinement_seconds_left(50, 100, 2.0), 0.0);  // still growing: unknown
   EXPECT_EQ(refinement_seconds_left(100, 0, 2.0), 0.0);   // nothing added: done
+}
+
+// The clamp for coincident surfaces (row sum well above 1, link_transport.h) scales an unbalanced
+// leaf back to a row sum of 1, and leaves a balanced one alone: its receive factor pairs with its
+// sources' send factors, so a large factor against a row of 1 is not an excess.
+TEST(LeafIrradiance, ClampsCoincidentRowsButNotBalancedFactors) {
+  HNode leaf;
+  const Vec3 H(3.5, 3.5, 3.5);
+  bool clamped = false;
+  EXPECT_NEAR(leaf_irradiance(leaf, H, 3.5, &clamped).x, 1.0, 1e-15);  // two shades in one place
+  EXPECT_TRUE(clamped);
+  clamped = false;
+  EXPECT_EQ(leaf_irradiance(leaf, H, 1.2, &clamped).x, 3.5);  // near a corner: kept
+  EXPECT_FALSE(clamped);
+  leaf.receive = 2.6;
+  leaf.balanced = true;
+  EXPECT_EQ(leaf_irradiance(leaf, Vec3(1, 1, 1), 1.0, &clamped).x, 2.6);
+  EXPECT_FALSE(clamped);
+  leaf.balanced = false;
+  EXPECT_NEAR(leaf_irradiance(leaf, Vec3(1, 1, 1), 1.0, &clamped).x, 1.0, 1e-15);
+  EXPECT_TRUE(clamped);
 }
 
 }  // namespace

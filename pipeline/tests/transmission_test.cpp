@@ -89,6 +89,16 @@ TEST_F(Transmission, LampshadeLightsTheCeilingOnlyWhenItTransmits) {
   // Measured 0.67. Closed, so the audit balances: each side passes on exactly what the other
   // received over the same region (transmission.h; measured 2.8e-9).
   EXPECT_LE(lit["energy_audit"]["imbalance"].get<double>(), 1e-4);
+  // And nothing escapes a closed room: the room and the shade's two sides absorb what the bulb emits.
+  // Clusters holding the shade's twins gathered light the twins cannot see and sent the hidden
+  // inside's radiosity out: absorbed 0.9958 of emitted before links stopped ending at them.
+  EXPECT_TRUE(lit["effects"]["closure"]["on"].get<bool>());
+  const nlohmann::json& audit = lit["energy_audit"];
+  for (int c = 0; c < 3; ++c) {
+    const double emitted = audit["emitted_w"][c].get<double>(), absorbed = audit["absorbed_w"][c].get<double>();
+    std::printf("channel %d: absorbed / emitted %.6f, escaped %.3e W\n", c, absorbed / emitted, audit["escaped_w"][c].get<double>());
+    EXPECT_NEAR(absorbed / emitted, 1.0, 1e-4) << "channel " << c;
+  }
 }
 
 TEST_F(Transmission, GltfDiffuseTransmissionRoundTripsAndOverOneIsRefused) {

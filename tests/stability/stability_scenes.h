@@ -119,8 +119,8 @@ inline Solution solve_hierarchy(const Scene& input, double epsilon, double toler
   settings.tolerance = tolerance;
   settings.accelerate = accelerate;
   // As a bake does (effect plan): a closed scene balances its transport, a convex one casts no ray.
-  uint64_t closure_rays = 0;
-  settings.closed = is_closed(s.scene, rays, closure_rays);
+  uint64_t closure_rays = 0, pressed_samples = 0;
+  settings.closed = is_closed(s.scene, rays, closure_rays, pressed_samples);
   settings.visibility = !is_convex_enclosure(s.scene);
   HierarchicalStats stats;
   solve_hierarchical(h, rays, settings, stats);

@@ -61,7 +61,9 @@ void apply_override(Effect& e, const std::string& name, const std::map<std::stri
 bool is_convex_enclosure(const Scene& scene);
 
 // Whether no ray leaves the scene: cosine-distributed rays from stratified points of every polygon
-// (about 65,536 in all, at least one a polygon), each must hit a surface. Deterministic.
-bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast);
+// (about 65,536 in all, at least one a polygon), each must hit a surface, but for rays from points
+// pressed against a polygon facing the other way in the same plane (a table's bottom on the floor:
+// counted in pressed_samples), which see nothing. Deterministic.
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples);
 
 }  // namespace walkrad

@@ -45,6 +45,7 @@ struct HNode {
   Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
   double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
   double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
+  bool balanced = false;  // leaf: its factors make its row sum exactly 1 (balance_closed_transport)
   Vec3 D;                 // element: irradiance from punctual lights (punctual_lights.h), its area mean
   Vec3 Hl;                // leaf element: the irradiance its links and its ancestors' gave, last solved
   bool D_known = false;   // D computed (new elements get theirs before they are solved)
