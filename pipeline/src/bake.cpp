@@ -84,6 +84,7 @@ std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
   add(&vs.min_polygons, sizeof vs.min_polygons);
   add(&vs.feature_ratio, sizeof vs.feature_ratio);
   add(&vs.small_object, sizeof vs.small_object);
+  add(&vs.max_dispersion, sizeof vs.max_dispersion);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   return hex;

@@ -186,7 +186,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   if (method != "hierarchical") {
     plan.volumes.reason = "classic method: exact rays only";
   } else if (!has_volumes) {
-    plan.volumes.reason = "no cluster of many small separate objects (a volume): exact rays only";
+    plan.volumes.reason = "no cluster of many small separate objects spread as if at random (a volume): exact rays only";
   } else {
     const size_t n = scene.polygons.size();
     plan.volumes.reason = std::to_string(volumes->boxes.size()) + " volume clusters hold " +

@@ -466,19 +466,27 @@ class Solver {
       // A link whose every ray is blocked sees nothing of the source: 0, not the control variate's
       // unbiased but noisy difference, which is positive half of the time and leaked light into
       // closed rooms (stability suite, junctions). Per point it would bias: one ray a point is common.
-      double sum = 0;
+      // Through volumes no ray is ever wholly blocked (transmittance exp(−τ) > 0): where most of
+      // the source is hidden the control variate is all noise, so the plain estimate of the part
+      // that arrives, (A_j/π) E[cos cos / r² · visible], is used instead (unbiased as well).
+      double sum = 0, direct = 0, open = 0, shut = 0;
       size_t hidden = 0;
       for (size_t q = 0; q < pts.size(); ++q) {
-        double occluded = 0;
+        double occluded = 0, arrives = 0;
         for (int k = 0; k < per_point; ++k) {
           const double v = visible[q * per_point + k];
           occluded += kernel[q * per_point + k] * (1.0 - v);
+          arrives += kernel[q * per_point + k] * v;
           hidden += v == 0.0;
         }
         const double f = weights[q] - pts[q].weight * sj.area / kPi * (per_point ? occluded / per_point : 0.0);
         sum += f;
+        if (per_point) direct += pts[q].weight * sj.area / kPi * arrives / per_point;
+        open += arrives;
+        shut += occluded;
       }
       if (!segments.empty() && hidden == segments.size()) sum = 0;
+      if (p.volume && open < shut) sum = direct;
       sum = std::max(0.0, sum);
       p.F = sum / ri.area;
       // Variation of the point form factor over the receiver, from its quadrature points.
@@ -539,7 +547,9 @@ class Solver {
     // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
     // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
     const bool all_blocked = !segments.empty() && open == 0;
-    p.F = all_blocked ? 0.0 : std::max(0.0, unoccluded - occluded);
+    // Mostly hidden through volumes: the plain estimate, as for elements above.
+    const bool mostly_hidden = p.volume && open < weighted - open;
+    p.F = all_blocked ? 0.0 : std::max(0.0, mostly_hidden ? open / drawn : unoccluded - occluded);
   }
 
   static constexpr uint64_t kExactClusterPairs = 64;

@@ -24,9 +24,40 @@ struct Objects {
   }
 };
 
+// The index of dispersion (variance / mean) of a cluster's object count over a 4 × 4 × 4 lattice of
+// its box: about 1 for objects placed at random (Poisson), which κ = A/4V assumes, and far above it for
+// objects packed together in part of the box. Books along the walls and chairs' legs are small against
+// an office's rooms, yet their κ averaged over two rooms' box (0.6/m) let a book see the room through
+// its own shelf as well as the book beside it: row sums of 2 to 5, and importance and the refinement
+// ran away (7.9 M links after 29 rounds, against 0.37 M without volumes). ids, centres: per polygon of
+// the tree's own indexing, its object and its object's bounds centre.
+double dispersion(const ClusterNode& node, const std::vector<uint32_t>& polygons, const std::vector<uint32_t>& ids,
+                  const std::vector<Vec3>& centres, std::vector<std::pair<uint32_t, uint32_t>>& scratch) {
+  constexpr int kCells = 4, kAll = kCells * kCells * kCells;
+  const Vec3 lo = node.bounds.lo, d = node.bounds.diagonal();
+  auto cell = [&](double x, double l, double w) { return w > 0 ? std::clamp(int((x - l) / w * kCells), 0, kCells - 1) : 0; };
+  scratch.clear();
+  for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+    const uint32_t p = polygons[k];
+    const Vec3& c = centres[p];
+    scratch.push_back({ids[p], uint32_t((cell(c.x, lo.x, d.x) * kCells + cell(c.y, lo.y, d.y)) * kCells + cell(c.z, lo.z, d.z))});
+  }
+  std::sort(scratch.begin(), scratch.end());
+  scratch.erase(std::unique(scratch.begin(), scratch.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+                scratch.end());
+  if (scratch.empty()) return 0.0;
+  double count[kAll] = {};
+  for (const auto& object : scratch) count[object.second] += 1;
+  const double mean = double(scratch.size()) / kAll;
+  double var = 0;
+  for (double c : count) var += (c - mean) * (c - mean);
+  return var / kAll / mean;
+}
+
 }  // namespace
 
-std::vector<double> blocking_areas(const Scene& scene, std::vector<double>* object_size, std::vector<double>* object_width) {
+std::vector<double> blocking_areas(const Scene& scene, std::vector<double>* object_size, std::vector<double>* object_width,
+                                   std::vector<uint32_t>* object_id, std::vector<Vec3>* object_centre) {
   const size_t n = scene.polygons.size();
   // Polygons sharing an exact corner position belong to one object.
   struct Corner {
@@ -59,8 +90,12 @@ std::vector<double> blocking_areas(const Scene& scene, std::vector<double>* obje
   std::vector<double> out(n, 0.0);
   if (object_size) object_size->assign(n, 0.0);
   if (object_width) object_width->assign(n, 0.0);
+  if (object_id) object_id->assign(n, 0);
+  if (object_centre) object_centre->assign(n, Vec3{});
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t o = objects.find(i);
+    if (object_id) (*object_id)[i] = o;
+    if (object_centre) (*object_centre)[i] = bounds[o].center();
     // Closed: Σ a n = 0, blocking a; a flat sheet: |Σ a n| = a, blocking 2a (both faces block).
     const double blocking = object_area[o] + length(vector_area[o]);
     out[i] = object_area[o] > 0 ? area[i] * blocking / object_area[o] : 0.0;
@@ -73,7 +108,9 @@ std::vector<double> blocking_areas(const Scene& scene, std::vector<double>* obje
 VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree, const VolumeSettings& settings) {
   VolumeClusters out;
   const size_t n = scene.polygons.size();
-  const std::vector<double> blocking = blocking_areas(scene, &out.object_size, &out.object_width);
+  std::vector<uint32_t> object_id;
+  std::vector<Vec3> object_centre;
+  const std::vector<double> blocking = blocking_areas(scene, &out.object_size, &out.object_width, &object_id, &object_centre);
   out.polygon_in_volume.assign(n, 0);
 
   // The small objects' own cluster tree (its polygon indices map back through `small`).
@@ -86,6 +123,13 @@ VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree,
       sub.polygons.push_back(scene.polygons[i]);
     }
   const ClusterTree vt = build_cluster_tree(sub);
+  std::vector<uint32_t> sub_id(small.size());
+  std::vector<Vec3> sub_centre(small.size());
+  for (size_t k = 0; k < small.size(); ++k) {
+    sub_id[k] = object_id[small[k]];
+    sub_centre[k] = object_centre[small[k]];
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> scratch;
   const size_t nodes = vt.nodes.size();
   std::vector<double> prefix(vt.polygons.size() + 1, 0.0), feature(nodes, 0.0);
   for (size_t k = 0; k < vt.polygons.size(); ++k) prefix[k + 1] = prefix[k] + blocking[small[vt.polygons[k]]];
@@ -102,7 +146,8 @@ VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree,
     feature[i] = f;
     const Vec3 d = node.bounds.diagonal();
     const double smallest = std::min({d.x, d.y, d.z});
-    volume[i] = node.count >= settings.min_polygons && smallest > 0 && f <= settings.feature_ratio * smallest;
+    volume[i] = node.count >= settings.min_polygons && smallest > 0 && f <= settings.feature_ratio * smallest &&
+                dispersion(node, vt.polygons, sub_id, sub_centre, scratch) <= settings.max_dispersion;
   }
   // The finest volumes: descend through volumes while both children are volumes too.
   std::vector<uint32_t> stack;

@@ -20,8 +20,8 @@ namespace walkrad {
 namespace {
 
 // n closed cubes of side a in [0,1]³, eight of them in its corners so that the cluster's bounds are
-// exactly the unit cube: A = 6 n a², V = 1.
-Scene cube_cloud(int n, double a, uint64_t seed) {
+// exactly the unit cube: A = 6 n a², V = 1. The others at random, in x ≤ x_max.
+Scene cube_cloud(int n, double a, uint64_t seed, double x_max = 1.0) {
   Scene scene;
   scene.materials.push_back({"grey", Vec3(0.5, 0.5, 0.5), Vec3{}});
   Rng rng(seed);
@@ -30,7 +30,7 @@ Scene cube_cloud(int n, double a, uint64_t seed) {
     if (i < 8) {
       c = Vec3(i & 1 ? 1 - a / 2 : a / 2, i & 2 ? 1 - a / 2 : a / 2, i & 4 ? 1 - a / 2 : a / 2);
     } else {
-      c = Vec3(a + (1 - 2 * a) * rng.uniform(), a + (1 - 2 * a) * rng.uniform(), a + (1 - 2 * a) * rng.uniform());
+      c = Vec3(a + (x_max - 2 * a) * rng.uniform(), a + (1 - 2 * a) * rng.uniform(), a + (1 - 2 * a) * rng.uniform());
     }
     test::add_cube(scene, c, a);
   }
@@ -178,6 +178,19 @@ TEST(VolumeClusters, AnOpenSheetBlocksWithBothFacesAClosedCubeWithOne) {
   const std::vector<double> blocking = blocking_areas(scene);
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(blocking[size_t(k)], 1.0, 1e-12);
   EXPECT_NEAR(blocking[6], 2.0, 1e-12);
+}
+
+TEST(VolumeClusters, ObjectsPackedIntoASideOfTheBoxAreNotItsMedium) {
+  // κ = A/4V assumes objects spread at random. The same 400 cubes in the box's first quarter (books
+  // along a wall, the office floor's failure) are not the box's medium; spread over it, they are.
+  VolumeSettings vs;
+  vs.min_polygons = 6 * 400;  // only the root could be a volume
+  const Scene packed = cube_cloud(400, 0.02, 11, 0.25);
+  EXPECT_TRUE(find_volume_clusters(packed, build_cluster_tree(packed), vs).empty());
+  const Scene spread = cube_cloud(400, 0.02, 11);
+  EXPECT_EQ(find_volume_clusters(spread, build_cluster_tree(spread), vs).boxes.size(), 1u);
+  vs.max_dispersion = 1e9;  // the rule off: the packed cubes pass
+  EXPECT_EQ(find_volume_clusters(packed, build_cluster_tree(packed), vs).boxes.size(), 1u);
 }
 
 TEST(VolumeClusters, ATessellatedBoxIsOneBigObjectNotAVolume) {

@@ -12,8 +12,11 @@
 // Which clusters are volumes: the small objects (a connected piece of geometry: polygons sharing a
 // corner; at most small_object × the scene's diagonal) get a cluster tree of their own, so that a
 // wall or a lamp beside them does not stretch its boxes; its clusters holding at least min_polygons
-// polygons whose every object is at most feature_ratio of the cluster's smallest side are volumes. A
-// finely tessellated wall is one big object, never a volume. The finest volumes (whose children are
+// polygons whose every object is at most feature_ratio of the cluster's smallest side, and whose
+// objects are spread over its box as if at random (their count over a 4 × 4 × 4 lattice of the box has
+// an index of dispersion, variance / mean, of at most max_dispersion; 1 for a Poisson process), are
+// volumes. A finely tessellated wall is one big object, never a
+// volume; books on a shelf at the side of a room are not the room's medium. The finest volumes (whose children are
 // not both volumes) define the extinction field; their polygons are "in a volume".
 #pragma once
 
@@ -29,6 +32,7 @@ struct VolumeSettings {
   uint32_t min_polygons = 64;   // polygons in a volume, at least
   double feature_ratio = 0.25;  // its largest object, at most this fraction of its smallest side
   double small_object = 1.0 / 32;  // objects larger than this × the scene's diagonal are never in a volume
+  double max_dispersion = 2.0;  // its objects' index of dispersion over a 4 × 4 × 4 lattice, at most (1: random)
   // The multi-resolution rule (volume_visibility.h): a link sees through a volume when its objects are
   // smaller than penumbra_ratio × the link's penumbra width there; exact rays otherwise.
   double penumbra_ratio = 1.0;
@@ -58,8 +62,10 @@ struct VolumeClusters {
 VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree, const VolumeSettings& settings);
 
 // Per polygon: its blocking area (see above), from its connected object's closure; optionally its
-// object's bounds diagonal and width (VolumeClusters).
+// object's bounds diagonal and width (VolumeClusters), its object (an index) and its object's bounds
+// centre.
 std::vector<double> blocking_areas(const Scene& scene, std::vector<double>* object_size = nullptr,
-                                   std::vector<double>* object_width = nullptr);
+                                   std::vector<double>* object_width = nullptr, std::vector<uint32_t>* object_id = nullptr,
+                                   std::vector<Vec3>* object_centre = nullptr);
 
 }  // namespace walkrad
