@@ -136,7 +136,13 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
     throw InputError(file, place, "reflectance + transmittance must lie in [0, 1] (energy cannot be created)");
   if (std::min({mat.emission.x, mat.emission.y, mat.emission.z}) < 0)
     throw InputError(file, place, "emission must not be negative");
-  // ρ = 1 keeps energy forever and a closed scene never converges: cap it, and say so.
+  // ρ = 1 keeps energy forever and a closed scene never converges. A file that states it (an explicit
+  // baseColorFactor, no texture) is refused; where it comes from glTF's default white or a texture's
+  // mean, it is capped, as are values in (0.99, 1), and said so.
+  const bool stated = gm.values.count("baseColorFactor") > 0 && mat.reflectance_texture < 0;
+  if (stated && max_component(mat.reflectance) >= 1)
+    throw InputError(file, place, "a reflectance of 1 (baseColorFactor) reflects all the light it receives, and a "
+                                  "closed scene of it never converges: use at most 0.99");
   constexpr double kMaxReflectance = 0.99;
   if (max_component(mat.reflectance) > kMaxReflectance) {
     mat.reflectance = {std::min(mat.reflectance.x, kMaxReflectance), std::min(mat.reflectance.y, kMaxReflectance),

@@ -353,6 +353,8 @@ class Reader {
     } else if (kw == "rd" || kw == "td") {
       count(1, 1);
       (kw == "rd" ? m.rd : m.td) = fraction(1);
+      if (kw == "rd" && m.rd >= 1)
+        fail("rd: a reflectance of 1 reflects all the light it receives, and a closed scene of it never converges: use at most 0.99");
       (kw == "rd" ? m.rd_c : m.td_c) = *colour_;
     } else if (kw == "ed") {
       count(1, 1);

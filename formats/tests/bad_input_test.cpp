@@ -178,7 +178,7 @@ TEST_F(BadInput, DevicesAreNotFiles) {
   expect_refused([&] { read_mgf(m); }, m, kExitBadInput, {"line 1", "cannot open included file"});
 }
 
-// Issue 9: non-finite coordinates, reflectance outside [0, 1], negative emission: exit 3 with the place.
+// Issue 9: non-finite coordinates, reflectance ≥ 1 or < 0, negative emission: exit 3 with the place.
 TEST_F(BadInput, NonFiniteCoordinatesNameTheAccessor) {
   Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -194,6 +194,18 @@ TEST_F(BadInput, MaterialsOutOfRangeNameTheMaterial) {
     const std::string p = write("rho.gltf", g);
     expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"materials[0]", "baseColorFactor must lie in [0, 1]"});
   }
+  // Reflectance 1 stated in the file (an untextured baseColorFactor) is refused; glTF's default white,
+  // which the file does not state, is capped at 0.99 with a warning.
+  nlohmann::json white = quad_gltf();
+  white["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 1.0, 0.5, 1.0};
+  const std::string w = write("white.gltf", white);
+  expect_refused([&] { read_gltf(w); }, w, kExitBadInput, {"materials[0]", "reflectance of 1", "at most 0.99"});
+  white["materials"][0]["pbrMetallicRoughness"].erase("baseColorFactor");
+  const Scene defaulted = read_gltf(write("default-white.gltf", white));
+  EXPECT_EQ(defaulted.materials[0].reflectance.x, 0.99);
+  ASSERT_FALSE(defaulted.warnings.empty());
+  EXPECT_NE(defaulted.warnings.front().find("reflectance capped at 0.99"), std::string::npos) << defaulted.warnings.front();
+
   nlohmann::json g = quad_gltf();
   g["materials"][1]["emissiveFactor"] = {1, -1, 1};
   const std::string p = write("emission.gltf", g);
@@ -203,6 +215,8 @@ TEST_F(BadInput, MaterialsOutOfRangeNameTheMaterial) {
   expect_refused([&] { read_mgf(nan); }, nan, kExitBadInput, {"line 2", "'nan' is not a number"});
   const std::string rd = write("rd.mgf", std::string("m x =\n\trd 1.2\n"));
   expect_refused([&] { read_mgf(rd); }, rd, kExitBadInput, {"line 2", "must lie in [0, 1]"});
+  const std::string one = write("rd1.mgf", std::string("m x =\n\trd 1\n"));
+  expect_refused([&] { read_mgf(one); }, one, kExitBadInput, {"line 2", "reflectance of 1", "at most 0.99"});
   const std::string ed = write("ed.mgf", std::string("m x =\n\ted -5\n"));
   expect_refused([&] { read_mgf(ed); }, ed, kExitBadInput, {"line 2", "emittance must not be negative"});
   const std::string huge = write("huge.mgf", std::string("v a =\n\tp 1e300 0 0\nv b =\n\tp 0 1 0\nv c =\n\tp 0 0 1\n"

@@ -1,7 +1,8 @@
 // Reads a glTF 2.0 scene (.gltf or .glb) into the plain scene arrays (scene.h):
 // - triangle primitives of every mesh under the default scene's node transforms (TRS or matrix);
 //   pairs of consecutive triangles that form a planar convex quad are merged into one quad;
-// - diffuse reflectance = baseColorFactor × the average of baseColorTexture (when present);
+// - diffuse reflectance = baseColorFactor × the average of baseColorTexture (when present), capped at
+//   0.99 with a warning; an untextured baseColorFactor of 1 stated in the file is refused;
 // - emission E = π × emissiveFactor × KHR_materials_emissive_strength (glTF emission is radiance);
 // - camera nodes (perspective) become viewpoints.
 // Zero-area triangles are dropped and counted. Bad input throws InputError naming file and place.

@@ -15,7 +15,7 @@
 // - Units: MGF coordinates are metres (the MGF spec); they are taken as they are.
 // - Colour: linear sRGB (Rec. 709 primaries, D65), MGF's neutral (equal-energy white) mapped to
 //   D65 keeping luminance, so luminance(reflectance) = rd (mgf_colour.h). "cxy .333 .333" is grey.
-// - Reflectance ρ = rd in the current colour, capped at 0.99 per channel (with a warning).
+// - Reflectance ρ = rd in the current colour, capped at 0.99 per channel (with a warning); rd ≥ 1 is refused.
 // - Emission: ed is an emittance in lm/m²; E = ed / 179 W/m² of emitted radiosity (179 lm/W is
 //   the efficacy of equal-energy white, Radiance's WHITE_EFFICACY), in the colour of ed.
 // - Sides: a material with "sides 2" gives each face a second polygon with reversed winding, so
