@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "stability_scenes.h"
+#include "temp_dir_test.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_writer.h"
 #include "walkrad/pipeline/bake.h"
@@ -401,14 +402,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class BadGeometry : public ::testing::Test {
+class BadGeometry : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("walkrad-stability-input-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   BakeSettings settings(const std::string& scene, const std::string& out) const {
     BakeSettings s;
     s.scene = scene;
@@ -422,7 +417,6 @@ class BadGeometry : public ::testing::Test {
     std::ifstream in(p, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  fs::path dir_;
 };
 
 // ---- Degenerate input: zero-area triangles (a repeated corner; three corners on a line) and a
