@@ -68,11 +68,11 @@ std::vector<double> column_sums(const Hierarchy& h, F receive) {
 }
 
 // Sets every balanced leaf's factor to 1 / its sum. Returns the largest change of a factor.
-double set_factors(Hierarchy& h, const std::vector<double>& sums, const std::vector<uint8_t>& balanced, bool receive) {
+double set_factors(Hierarchy& h, const std::vector<double>& sums, bool receive) {
   double change = 0;
   for (size_t k = 0; k < sums.size(); ++k) {
     HNode& n = h.nodes()[k];
-    if (!balanced[k]) continue;
+    if (!n.balanced) continue;
     const double f = std::clamp(1.0 / sums[k], kMinFactor, kMaxFactor);
     double& slot = receive ? n.receive : n.send;
     change = std::max(change, std::fabs(f - slot));
@@ -146,21 +146,21 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
   // that the rest converges (their bounded factors would fight the others' and never settle).
   const auto one = [](const HNode&) { return 1.0; };
   const std::vector<double> raw_rows = row_sums(h, one), raw_columns = column_sums(h, one);
-  std::vector<uint8_t> balanced(nodes.size(), 0);
   for (size_t k = 0; k < nodes.size(); ++k) {
-    if (!is_leaf_element(nodes[k])) continue;
-    balanced[k] = raw_rows[k] >= kMinRaw && raw_rows[k] <= kMaxRaw && raw_columns[k] >= kMinRaw && raw_columns[k] <= kMaxRaw;
-    h.nodes()[k].balanced = balanced[k];
-    if (!balanced[k]) {
-      h.nodes()[k].send = h.nodes()[k].receive = 1.0;
+    HNode& n = h.nodes()[k];
+    n.balanced = false;  // also on nodes that were leaves in an earlier round
+    if (!is_leaf_element(n)) continue;
+    n.balanced = raw_rows[k] >= kMinRaw && raw_rows[k] <= kMaxRaw && raw_columns[k] >= kMinRaw && raw_columns[k] <= kMaxRaw;
+    if (!n.balanced) {
+      n.send = n.receive = 1.0;
       ++stats.unbalanced;
     }
   }
   const auto send = [](const HNode& n) { return n.send; };
   const auto receive = [](const HNode& n) { return n.receive; };
   for (stats.iterations = 1; stats.iterations <= max_iterations; ++stats.iterations) {
-    const double columns = set_factors(h, column_sums(h, receive), balanced, false);
-    const double rows = set_factors(h, row_sums(h, send), balanced, true);
+    const double columns = set_factors(h, column_sums(h, receive), false);
+    const double rows = set_factors(h, row_sums(h, send), true);
     if (std::max(columns, rows) <= tolerance) break;
   }
   stats.iterations = std::min(stats.iterations, max_iterations);
@@ -168,7 +168,7 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
   // factors); the columns are off by what one more column update would change.
   const std::vector<double> rows = row_sums(h, send), columns = column_sums(h, receive);
   for (size_t k = 0; k < nodes.size(); ++k) {
-    if (!balanced[k]) continue;
+    if (!nodes[k].balanced) continue;
     stats.row_error = std::max(stats.row_error, std::fabs(rows[k] * nodes[k].receive - 1.0));
     stats.column_error = std::max(stats.column_error, std::fabs(columns[k] * nodes[k].send - 1.0));
   }

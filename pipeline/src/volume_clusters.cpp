@@ -29,16 +29,18 @@ struct Objects {
 // objects packed together in part of the box. Books along the walls and chairs' legs are small against
 // an office's rooms, yet their κ averaged over two rooms' box (0.6/m) let a book see the room through
 // its own shelf as well as the book beside it: row sums of 2 to 5, and importance and the refinement
-// ran away (7.9 M links after 29 rounds, against 0.37 M without volumes). ids, centres: per polygon of
-// the tree's own indexing, its object and its object's bounds centre.
-double dispersion(const ClusterNode& node, const std::vector<uint32_t>& polygons, const std::vector<uint32_t>& ids,
-                  const std::vector<Vec3>& centres, std::vector<std::pair<uint32_t, uint32_t>>& scratch) {
+// ran away (4.75 M links after 22 rounds and growing, against 0.38 M without volumes). polygons: the tree's own
+// indexing, which `small` maps to the scene's polygons; ids, centres: per scene polygon, its object and
+// its object's bounds centre.
+double dispersion(const ClusterNode& node, const std::vector<uint32_t>& polygons, const std::vector<uint32_t>& small,
+                  const std::vector<uint32_t>& ids, const std::vector<Vec3>& centres,
+                  std::vector<std::pair<uint32_t, uint32_t>>& scratch) {
   constexpr int kCells = 4, kAll = kCells * kCells * kCells;
   const Vec3 lo = node.bounds.lo, d = node.bounds.diagonal();
   auto cell = [&](double x, double l, double w) { return w > 0 ? std::clamp(int((x - l) / w * kCells), 0, kCells - 1) : 0; };
   scratch.clear();
   for (uint32_t k = node.first; k < node.first + node.count; ++k) {
-    const uint32_t p = polygons[k];
+    const uint32_t p = small[polygons[k]];
     const Vec3& c = centres[p];
     scratch.push_back({ids[p], uint32_t((cell(c.x, lo.x, d.x) * kCells + cell(c.y, lo.y, d.y)) * kCells + cell(c.z, lo.z, d.z))});
   }
@@ -123,12 +125,6 @@ VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree,
       sub.polygons.push_back(scene.polygons[i]);
     }
   const ClusterTree vt = build_cluster_tree(sub);
-  std::vector<uint32_t> sub_id(small.size());
-  std::vector<Vec3> sub_centre(small.size());
-  for (size_t k = 0; k < small.size(); ++k) {
-    sub_id[k] = object_id[small[k]];
-    sub_centre[k] = object_centre[small[k]];
-  }
   std::vector<std::pair<uint32_t, uint32_t>> scratch;
   const size_t nodes = vt.nodes.size();
   std::vector<double> prefix(vt.polygons.size() + 1, 0.0), feature(nodes, 0.0);
@@ -147,7 +143,7 @@ VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree,
     const Vec3 d = node.bounds.diagonal();
     const double smallest = std::min({d.x, d.y, d.z});
     volume[i] = node.count >= settings.min_polygons && smallest > 0 && f <= settings.feature_ratio * smallest &&
-                dispersion(node, vt.polygons, sub_id, sub_centre, scratch) <= settings.max_dispersion;
+                dispersion(node, vt.polygons, small, object_id, object_centre, scratch) <= settings.max_dispersion;
   }
   // The finest volumes: descend through volumes while both children are volumes too.
   std::vector<uint32_t> stack;
