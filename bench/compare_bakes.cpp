@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "walkrad/formats/manifest.h"
-#include "walkrad/pipeline/accuracy.h"
-#include "walkrad/pipeline/bake_sampler.h"
+#include "walkrad/accuracy/error_measures.h"
+#include "walkrad/accuracy/bake_sampler.h"
 
 int main(int argc, char** argv) {
   using namespace walkrad;

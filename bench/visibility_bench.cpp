@@ -9,11 +9,11 @@
 #include <tbb/global_control.h>
 
 #include "walkrad/formats/gltf_reader.h"
-#include "walkrad/pipeline/cluster_tree.h"
-#include "walkrad/pipeline/contact_split.h"
-#include "walkrad/pipeline/form_factor_matrix.h"
-#include "walkrad/pipeline/ray_scene.h"
-#include "walkrad/pipeline/subdivision.h"
+#include "walkrad/scene/cluster_tree.h"
+#include "walkrad/scene/contact_split.h"
+#include "walkrad/classic/form_factor_matrix.h"
+#include "walkrad/visibility/ray_scene.h"
+#include "walkrad/classic/subdivision.h"
 
 namespace {
 

@@ -10,15 +10,16 @@
 #include <tbb/global_control.h>
 
 #include "walkrad/formats/scene.h"
-#include "walkrad/pipeline/cluster_tree.h"
-#include "walkrad/pipeline/contact_split.h"
-#include "walkrad/pipeline/effect_plan.h"
-#include "walkrad/pipeline/energy_audit.h"
-#include "walkrad/pipeline/form_factor_matrix.h"
-#include "walkrad/pipeline/gauss_seidel.h"
-#include "walkrad/pipeline/hierarchical_solver.h"
-#include "walkrad/pipeline/ray_scene.h"
-#include "walkrad/pipeline/subdivision.h"
+#include "walkrad/scene/cluster_tree.h"
+#include "walkrad/scene/contact_split.h"
+#include "walkrad/plan/effect_plan.h"
+#include "walkrad/classic/matrix_audit.h"
+#include "walkrad/hierarchical/hierarchy_audit.h"
+#include "walkrad/classic/form_factor_matrix.h"
+#include "walkrad/classic/gauss_seidel.h"
+#include "walkrad/hierarchical/hierarchical_solver.h"
+#include "walkrad/visibility/ray_scene.h"
+#include "walkrad/classic/subdivision.h"
 
 namespace walkrad::stability {
 

@@ -15,10 +15,10 @@
 #include <unistd.h>
 
 #include "stability_scenes.h"
-#include "temp_dir_test.h"
+#include "walkrad/testing/temp_dir_test.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_writer.h"
-#include "walkrad/pipeline/bake.h"
+#include "walkrad/bake/bake.h"
 
 namespace walkrad::stability {
 namespace {

@@ -1,0 +1,173 @@
+#include "walkrad/accuracy/reference_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace walkrad {
+
+namespace {
+
+// A point uniform by area on a convex polygon: a triangle by the square-root warp (Turk 1990), a quad
+// as its two triangles (v0 v1 v2, v0 v2 v3) chosen by area. `u` picks the triangle and is reused.
+Vec3 uniform_point(const Polygon& p, double u, double v) {
+  Vec3 a = p.v[0], b = p.v[1], c = p.v[2];
+  if (p.count == 4) {
+    const double a1 = length(cross(p.v[1] - p.v[0], p.v[2] - p.v[0]));
+    const double a2 = length(cross(p.v[2] - p.v[0], p.v[3] - p.v[0]));
+    const double split = a1 / std::max(a1 + a2, 1e-300);
+    if (u < split) {
+      u /= split;
+    } else {
+      u = (u - split) / std::max(1 - split, 1e-300);
+      b = p.v[2];
+      c = p.v[3];
+    }
+  }
+  const double su = std::sqrt(std::min(u, 1.0));
+  return a * (1 - su) + b * (su * (1 - v)) + c * (su * v);
+}
+
+// A direction about unit n with pdf cos θ / π (Malley's method), in the frame of Duff et al. 2017
+// ("Building an orthonormal basis, revisited").
+Vec3 cosine_direction(const Vec3& n, double u1, double u2) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+  const Vec3 t(1 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  const Vec3 s(b, sign + n.y * n.y * a, -n.y);
+  const double r = std::sqrt(u1), phi = 2 * kPi * u2;
+  return normalize(t * (r * std::cos(phi)) + s * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1)));
+}
+
+// Veach's power heuristic (β = 2) for one sample of technique f against technique g (pdfs in solid angle).
+double power_heuristic(double f, double g) { return f * f / (f * f + g * g); }
+
+}  // namespace
+
+ReferenceTracer::ReferenceTracer(const Scene& scene, const RayScene& rays) : scene_(scene), rays_(rays) {
+  normals_.reserve(scene.polygons.size());
+  emitter_index_.assign(scene.polygons.size(), -1);
+  double total = 0;
+  for (uint32_t i = 0; i < scene.polygons.size(); ++i) {
+    const Polygon& p = scene.polygons[i];
+    normals_.push_back(polygon_normal(p));
+    const Material& m = scene.materials[p.material];
+    const double power = luminance(m.emission) * polygon_area(p);
+    if (m.emits() && power > 0) {
+      emitter_index_[i] = int32_t(emitters_.size());
+      emitters_.push_back(i);
+      emitter_area_.push_back(polygon_area(p));
+      total += power;
+      emitter_cdf_.push_back(total);
+    }
+  }
+  for (double& c : emitter_cdf_) c /= total;
+  if (!emitter_cdf_.empty()) emitter_cdf_.back() = 1.0;
+}
+
+// Next-event estimate of the irradiance that emitters send straight to x (normal n).
+Vec3 ReferenceTracer::direct(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const {
+  if (emitters_.empty()) return {};
+  const double u = rng.uniform();
+  const size_t k = std::min(emitters_.size() - 1, size_t(std::upper_bound(emitter_cdf_.begin(), emitter_cdf_.end(), u) -
+                                                         emitter_cdf_.begin()));
+  const double pk = emitter_cdf_[k] - (k ? emitter_cdf_[k - 1] : 0.0);
+  const Polygon& e = scene_.polygons[emitters_[k]];
+  const double u1 = rng.uniform(), u2 = rng.uniform();
+  const Vec3 y = uniform_point(e, u1, u2);
+  const Vec3& ny = normals_[emitters_[k]];
+  const Vec3 d = y - x;
+  const double r2 = dot(d, d);
+  if (!(r2 > 0) || pk <= 0) return {};
+  const Vec3 dir = d / std::sqrt(r2);
+  const double cx = dot(n, dir), cy = -dot(ny, dir);
+  if (cx <= 0 || cy <= 0) return {};
+  ++rays;
+  const double off = rays_.offset();
+  if (rays_.occluded(x + n * off, y + ny * off)) return {};
+  // E/π is the emitted radiance; y's pdf is pk / area, in solid angle pk / area · r² / cos θy.
+  const double light_pdf = pk / emitter_area_[k] * r2 / cy;
+  return scene_.materials[e.material].emission *
+         (cx / (kPi * light_pdf) * power_heuristic(light_pdf, cx / kPi));
+}
+
+double ReferenceTracer::light_pdf(uint32_t polygon, double r2, double cos_y) const {
+  const int32_t k = emitter_index_[polygon];
+  if (k < 0 || cos_y <= 0) return 0;
+  return (emitter_cdf_[size_t(k)] - (k ? emitter_cdf_[size_t(k) - 1] : 0.0)) / emitter_area_[size_t(k)] * r2 / cos_y;
+}
+
+RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int samples, uint64_t seed, uint64_t stream,
+                                            uint64_t& rays) const {
+  constexpr int kMaxBounces = 1000;  // a safety cap; Russian roulette ends paths long before
+  Rng rng(seed, stream);
+  const Material& m0 = scene_.materials[scene_.polygons[point.polygon].material];
+  const double off = rays_.offset();
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, lum = 0, lum2 = 0;
+  for (int s = 0; s < samples; ++s) {
+    Vec3 value = m0.emission;
+    Vec3 beta = m0.reflectance;  // multiplies the irradiance at the current point
+    Vec3 x = point.position, n = normals_[point.polygon];
+    for (int bounce = 0; bounce < kMaxBounces && max_component(beta) > 0; ++bounce) {
+      value += mul(beta, direct(x, n, rng, rays));
+      const double u1 = rng.uniform(), u2 = rng.uniform();
+      const Vec3 dir = cosine_direction(n, u1, u2);
+      ++rays;
+      const RayScene::Hit hit = rays_.intersect(x + n * off, dir);
+      if (!hit.hit) break;
+      const Vec3& nq = normals_[hit.polygon];
+      if (dot(nq, dir) >= 0) break;  // a back face: opaque and black
+      // The cosine-weighted estimate of H is B(y): its emitted part, weighted against next-event
+      // estimation (which would have drawn y with light_pdf), then its reflected part, recursively.
+      const Material& mq = scene_.materials[scene_.polygons[hit.polygon].material];
+      if (mq.emits()) {
+        const Vec3 d = hit.position - x;
+        const double cos_x = dot(n, dir);
+        value += mul(beta, mq.emission) * power_heuristic(cos_x / kPi, light_pdf(hit.polygon, dot(d, d), -dot(nq, dir)));
+      }
+      beta = mul(beta, mq.reflectance);
+      if (bounce >= 2) {
+        const double survive = std::min(0.95, max_component(beta));
+        if (rng.uniform() >= survive) break;
+        beta = beta / survive;
+      }
+      x = hit.position;
+      n = nq;
+    }
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += value[c];
+      sum2[c] += value[c] * value[c];
+    }
+    const double l = luminance(value);
+    lum += l;
+    lum2 += l * l;
+  }
+  RadiosityEstimate r;
+  r.samples = uint32_t(samples);
+  const double n = std::max(1, samples);
+  auto error = [n](double s1, double s2) {
+    const double mean = s1 / n;
+    const double var = n > 1 ? std::max(0.0, (s2 - n * mean * mean) / (n - 1)) : 0.0;
+    return std::sqrt(var / n);
+  };
+  for (int c = 0; c < 3; ++c) {
+    r.B[c] = sum[c] / n;
+    r.standard_error[c] = error(sum[c], sum2[c]);
+  }
+  r.luminance_error = error(lum, lum2);
+  return r;
+}
+
+std::vector<RadiosityEstimate> ReferenceTracer::estimate(const std::vector<SurfacePoint>& points,
+                                                         const ReferenceSettings& settings, uint64_t& rays) const {
+  std::vector<RadiosityEstimate> out(points.size());
+  std::vector<uint64_t> counts(points.size(), 0);
+  tbb::parallel_for(size_t(0), points.size(), [&](size_t k) {
+    out[k] = estimate(points[k], settings.samples, settings.seed, k, counts[k]);
+  });
+  for (uint64_t c : counts) rays += c;
+  return out;
+}
+
+}  // namespace walkrad

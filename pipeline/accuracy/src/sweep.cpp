@@ -1,0 +1,280 @@
+#include "walkrad/accuracy/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/scene_reader.h"
+#include "walkrad/formats/walkthrough.h"
+#include "walkrad/accuracy/error_measures.h"
+#include "walkrad/accuracy/bake_process.h"
+#include "walkrad/accuracy/reference_set.h"
+#include "walkrad/scene/scene_cleanup.h"
+#include "walkrad/core/staged_output.h"
+#include "walkrad/accuracy/sweep_plot_script.h"
+
+namespace walkrad {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// The phases a bake's report.json may list, in pipeline order (a column each in sweep.csv).
+const char* const kPhases[] = {"read", "prepare", "importance", "subdivide", "form factors", "solve", "exposure", "mesh", "write"};
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+struct Run {
+  std::string name, method;
+  double epsilon = NAN, element_size = NAN;
+  std::vector<std::string> args;
+};
+
+std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
+  std::vector<Run> runs;
+  for (const std::string& method : s.methods) {
+    if (method == "classic") {
+      std::vector<double> sizes = s.element_sizes;
+      if (sizes.empty())
+        for (double d : {10.0, 15.0, 21.0, 30.0}) sizes.push_back(diagonal / d);
+      for (double h : sizes) runs.push_back({"classic-" + number(h), method, NAN, h, {"--method", "classic", "--element-size", number(h)}});
+    } else if (method == "hierarchical" || method == "importance") {
+      for (double e : s.epsilons) {
+        Run r{method + "-" + number(e), method, e, NAN, {"--method", "hierarchical", "--epsilon", number(e)}};
+        if (method == "hierarchical") r.args.push_back("--view-independent");
+        if (s.min_area > 0) r.args.insert(r.args.end(), {"--min-area", number(s.min_area)});
+        runs.push_back(r);
+      }
+    } else {
+      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, hierarchical, importance)",
+                       kExitBadArguments);
+    }
+  }
+  return runs;
+}
+
+double sum3(const json& v) { return v.at(0).get<double>() + v.at(1).get<double>() + v.at(2).get<double>(); }
+
+uint64_t folder_bytes(const std::string& dir) {
+  uint64_t bytes = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_regular_file() && e.path().filename() != "report.json") bytes += e.file_size();
+  return bytes;
+}
+
+// Where the bake is furthest from the reference (for the reader who wants to look): the sample point
+// with the largest |a − r|, its position, both values and the reference's standard error.
+json worst_point(const ReferenceSet& ref, const std::vector<double>& bake) {
+  size_t worst = ref.rays.size();
+  double largest = -1;
+  for (size_t k = 0; k < bake.size(); ++k)
+    if (!std::isnan(bake[k]) && !std::isnan(ref.luminance[k]) && std::fabs(bake[k] - ref.luminance[k]) > largest) {
+      largest = std::fabs(bake[k] - ref.luminance[k]);
+      worst = k;
+    }
+  if (worst == ref.rays.size()) return nullptr;
+  const Vec3 p = ref.rays[worst].origin + ref.rays[worst].direction * ref.distance[worst];
+  return {{"view", ref.rays[worst].view}, {"position", {p.x, p.y, p.z}}, {"reference", ref.luminance[worst]},
+          {"standard_error", ref.standard_error[worst]}, {"bake", bake[worst]}};
+}
+
+json or_null(size_t points, double value) { return points ? json(value) : json(nullptr); }
+
+json error_json(const ErrorMeasures& e) {
+  return {{"rms", or_null(e.points, e.rms)}, {"rms_weighted", or_null(e.points, e.rms_weighted)},
+          {"max", or_null(e.points, e.max)}, {"max_weighted", or_null(e.points, e.max_weighted)}, {"points", e.points}};
+}
+
+// One row of sweep.csv per run, from the run's JSON record.
+const char* const kColumns[] = {"method", "epsilon", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays",
+                                "triangles", "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max",
+                                "max_weighted", "bias", "image_pixels", "image_rms", "image_rms_weighted", "reference_ci_rms",
+                                "reference_ci_rms_weighted", "reference_image_ci_rms", "absorbed_over_emitted"};
+
+void write_csv(const std::string& path, const json& runs) {
+  std::ofstream out(path);
+  std::string header;
+  for (const char* c : kColumns) header += std::string(header.empty() ? "" : ",") + c;
+  for (const char* p : kPhases) {
+    std::string name = std::string("t_") + p;
+    std::replace(name.begin(), name.end(), ' ', '_');
+    header += "," + name;
+  }
+  out << header << '\n';
+  for (const json& r : runs) {
+    std::string line;
+    for (const char* c : kColumns) {
+      const json& v = r.at(c);
+      line += line.empty() ? "" : ",";
+      line += v.is_string() ? v.get<std::string>() : v.is_null() ? "" : v.is_number_float() ? number(v.get<double>()) : v.dump();
+    }
+    for (const char* p : kPhases) line += "," + (r.at("phases").contains(p) ? number(r.at("phases").at(p).get<double>()) : "");
+    out << line << '\n';
+  }
+  if (!out) throw OutputError(path + ": cannot write");
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw OutputError(path + ": cannot write");
+}
+
+}  // namespace
+
+SweepSummary run_sweep(const SweepSettings& s) {
+  std::unique_ptr<tbb::global_control> limit;
+  if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
+  Scene scene = read_scene(s.scene);
+  remove_duplicate_polygons(scene);
+  const std::vector<Viewpoint> views = s.views.empty() ? scene.cameras : read_walkthrough(s.views);
+  if (views.empty())
+    throw InputError(s.views.empty() ? s.scene : s.views, "", "no viewpoints: the sweep measures error where a walkthrough looks (give --views)");
+  const double diagonal = length(scene.bounds().diagonal());
+  const std::vector<Run> runs = plan_runs(s, diagonal);
+  StagedOutput out(s.output);
+  auto log = [&](const std::string& line) {
+    if (s.progress) std::fprintf(stderr, "walkrad: sweep: %s\n", line.c_str());
+  };
+
+  // The reference: sample points over the walkthrough, and images from a few of its viewpoints.
+  const RayScene rays(scene);
+  const ReferenceTracer tracer(scene, rays);
+  const size_t view_count = std::min(views.size(), std::max<size_t>(1, s.max_views));
+  log("reference: " + std::to_string(s.points) + " points × " + std::to_string(s.samples) + " paths");
+  const ReferenceSet points = trace_reference(scene, rays, tracer, stratified_view_rays(views, view_count, s.points / view_count, s.seed),
+                                              s.samples, s.seed);
+  ReferenceSet image;
+  json images = json::array();
+  if (s.image_width > 0) {
+    std::vector<ViewRay> pixels;
+    int height = 0;
+    for (uint32_t v : spread_views(views.size(), s.image_views)) {
+      const std::vector<ViewRay> px = image_rays(views, v, s.image_width, height);
+      pixels.insert(pixels.end(), px.begin(), px.end());
+      images.push_back({{"view", v}, {"name", views[v].name}, {"width", s.image_width}, {"height", height},
+                        {"file", "reference-view-" + std::to_string(v) + ".png"}});
+    }
+    log("reference images: " + std::to_string(pixels.size()) + " pixels × " + std::to_string(s.image_samples) + " paths");
+    image = trace_reference(scene, rays, tracer, std::move(pixels), s.image_samples, s.seed + 1);
+    size_t first = 0;
+    for (const json& im : images) {
+      const size_t count = size_t(im["width"].get<int>()) * im["height"].get<size_t>();
+      write_image_png(out.path(im["file"].get<std::string>()),
+                      std::vector<Vec3>(image.B.begin() + long(first), image.B.begin() + long(first + count)),
+                      std::vector<double>(image.luminance.begin() + long(first), image.luminance.begin() + long(first + count)),
+                      im["width"].get<int>(), im["height"].get<int>());
+      first += count;
+    }
+  }
+  const ErrorMeasures ci = reference_error_bar(points.luminance, points.standard_error, points.weight);
+  const ErrorMeasures image_ci = reference_error_bar(image.luminance, image.standard_error, image.weight);
+  {
+    std::ofstream csv(out.path("reference-points.csv"));
+    csv << "view,origin_x,origin_y,origin_z,dir_x,dir_y,dir_z,weight,distance,B_r,B_g,B_b,luminance,standard_error\n";
+    for (size_t k = 0; k < points.rays.size(); ++k) {
+      const ViewRay& r = points.rays[k];
+      csv << r.view << ',' << number(r.origin.x) << ',' << number(r.origin.y) << ',' << number(r.origin.z) << ','
+          << number(r.direction.x) << ',' << number(r.direction.y) << ',' << number(r.direction.z) << ',' << number(r.weight)
+          << ',' << number(points.distance[k]) << ',' << number(points.B[k].x) << ',' << number(points.B[k].y) << ','
+          << number(points.B[k].z) << ',' << number(points.luminance[k]) << ',' << number(points.standard_error[k]) << '\n';
+    }
+    if (!csv) throw OutputError(out.path("reference-points.csv") + ": cannot write");
+  }
+
+  // The bakes, one child process each.
+  const std::string exe = s.executable.empty() ? "/proc/self/exe" : s.executable;
+  const double tolerance = 1e-4 * diagonal;
+  fs::create_directories(out.path("bakes"));
+  json records = json::array();
+  for (const Run& run : runs) {
+    const std::string dir = out.path("bakes/" + run.name);
+    std::vector<std::string> args{"bake", s.scene, "-o", dir, "-q", "--exposure", "1"};
+    if (!s.views.empty()) args.insert(args.end(), {"--views", s.views});
+    if (s.threads > 0) args.insert(args.end(), {"--threads", std::to_string(s.threads)});
+    args.insert(args.end(), run.args.begin(), run.args.end());
+    const std::string log_path = out.path("bakes/" + run.name + ".log");
+    const ProcessRun p = run_process(exe, args, log_path);
+    if (p.exit_code >= kExitBadArguments && p.exit_code <= kExitLimitReached)  // the bake's own refusal: keep its code
+      throw InputError(s.scene, "run " + run.name, "the bake failed: " + last_line(log_path), ExitCode(p.exit_code));
+    if (p.exit_code != 0)
+      throw std::runtime_error("the bake of run " + run.name + " failed (exit code " + std::to_string(p.exit_code) +
+                               "): " + last_line(log_path));
+    std::ifstream report_file(dir + "/report.json");
+    const json report = json::parse(report_file);
+    const json& counts = report.at("counts");
+    const BakeSampler bake = BakeSampler::open(dir);
+    const std::vector<double> at_points = sample_bake(bake, points, tolerance);
+    const ErrorMeasures e = relative_errors(at_points, points.luminance, points.weight);
+    const ErrorMeasures ie = relative_errors(sample_bake(bake, image, tolerance), image.luminance, image.weight);
+    json phases = json::object();
+    for (const json& ph : report.at("phases")) phases[ph.at("name").get<std::string>()] = ph.at("seconds");
+    json rec = {{"name", run.name}, {"method", run.method},
+                {"epsilon", std::isnan(run.epsilon) ? json(nullptr) : json(run.epsilon)},
+                {"element_size", std::isnan(run.element_size) ? json(nullptr) : json(run.element_size)},
+                {"args", run.args}, {"seconds", p.wall_seconds}, {"cpu_seconds", p.cpu_seconds}, {"phases", phases},
+                {"elements", counts.value("elements", uint64_t(0))},
+                {"links", counts.contains("links") ? counts.at("links") : counts.value("form_factor_pairs", json(0))},
+                {"rays", counts.value("visibility_rays", uint64_t(0))}, {"triangles", counts.value("triangles", uint64_t(0))},
+                {"peak_rss_mib", p.peak_rss_mib}, {"output_bytes", folder_bytes(dir)},
+                {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted}, {"max", e.max},
+                {"max_weighted", e.max_weighted}, {"bias", e.bias}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
+                {"image_rms_weighted", or_null(ie.points, ie.rms_weighted)}, {"reference_ci_rms", ci.rms},
+                {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", or_null(image_ci.points, image_ci.rms)},
+                {"absorbed_over_emitted", sum3(report.at("energy").at("absorbed_w")) / sum3(report.at("energy").at("emitted_w"))},
+                {"worst_point", worst_point(points, at_points)}, {"counts", counts}};
+    records.push_back(rec);
+    char line[256];
+    std::snprintf(line, sizeof line, "%s: %.2f s, %.0f MiB, %s links, error %.2f%% (weighted %.2f%%, image %.2f%%)",
+                  run.name.c_str(), p.wall_seconds, p.peak_rss_mib, rec["links"].dump().c_str(), 100 * e.rms,
+                  100 * e.rms_weighted, 100 * ie.rms_weighted);
+    log(line);
+    if (!s.keep_bakes) fs::remove_all(dir);
+  }
+
+  json doc = {{"format", "walkrad-sweep"}, {"version", 1}, {"command", s.command}, {"scene", s.scene}, {"views", s.views},
+              {"viewpoints", views.size()}, {"input_polygons", scene.polygons.size()}, {"threads", s.threads},
+              {"unavailable", json::array({"hemicube: walkrad bake has no hemicube form factor option"})},
+              {"reference", {{"points", points.rays.size()}, {"measured_points", ci.points}, {"views", view_count},
+                             {"samples", s.samples}, {"rays", points.rays_cast}, {"seconds", points.seconds},
+                             {"ci", error_json(ci)}, {"image_ci", error_json(image_ci)}, {"image_samples", s.image_samples},
+                             {"image_rays", image.rays_cast}, {"image_seconds", image.seconds}, {"images", images},
+                             {"seed", s.seed}}},
+              {"runs", records}};
+  write_text(out.path("sweep.json"), doc.dump(2) + "\n");
+  write_csv(out.path("sweep.csv"), records);
+  if (!s.keep_bakes) fs::remove_all(out.path("bakes"));
+
+  SweepSummary summary;
+  summary.output = s.output;
+  summary.runs = runs.size();
+  summary.reference_seconds = points.seconds + image.seconds;
+  write_text(out.path("plot_sweep.py"), kSweepPlotScript);
+  if (s.plots) {
+    // Debian's python3-matplotlib is installed for the system interpreter, which a PATH may shadow.
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const ProcessRun p = run_process(python, {out.path("plot_sweep.py"), out.path("")}, out.path("plot.log"));
+    summary.plotted = p.exit_code == 0;
+    if (summary.plotted) fs::remove(out.path("plot.log"));
+    if (!summary.plotted)
+      std::fprintf(stderr, "walkrad: warning: plots and report.md not written (python3 with matplotlib is needed: %s)\n",
+                   last_line(out.path("plot.log")).c_str());
+  }
+  out.commit();
+  return summary;
+}
+
+}  // namespace walkrad

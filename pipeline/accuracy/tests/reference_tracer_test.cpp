@@ -1,0 +1,103 @@
+// The independent reference (reference_tracer.h) against exact answers: the furnace (a closed box,
+// every face emitting E and reflecting ρ: B = E / (1 − ρ)) and the direct light from a square emitter
+// onto a point below it (ρ E F, F the point-to-parallel-rectangle form factor), each within the
+// estimate's own 99.9% confidence interval; and the same estimates whatever the thread count.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "walkrad/testing/test_scenes.h"
+#include "walkrad/accuracy/reference_tracer.h"
+
+namespace walkrad {
+namespace {
+
+// 3.29 σ: a correct estimator fails one check in a thousand; the checks below are a few dozen.
+constexpr double kSigmas = 3.29;
+
+class ReferenceFurnace : public ::testing::TestWithParam<double> {};
+
+TEST_P(ReferenceFurnace, AgreesWithEOverOneMinusRhoWithinItsInterval) {
+  const double rho = GetParam();
+  const Vec3 e(1.0, 2.0, 0.5);
+  const Scene box = test::closed_box(2.0, {rho, rho, rho}, e);
+  const RayScene rays(box);
+  const ReferenceTracer tracer(box, rays);
+  std::vector<SurfacePoint> points;
+  for (uint32_t p = 0; p < box.polygons.size(); ++p) {
+    points.push_back({p, polygon_centroid(box.polygons[p])});
+    points.push_back({p, sample_polygon(box.polygons[p], 0.05, 0.9)});  // near an edge
+  }
+  ReferenceSettings s;
+  s.samples = 4096;
+  uint64_t cast = 0;
+  const std::vector<RadiosityEstimate> est = tracer.estimate(points, s, cast);
+  EXPECT_GT(cast, points.size() * size_t(s.samples));
+  const Vec3 exact = e / (1.0 - rho);
+  for (size_t k = 0; k < est.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(est[k].standard_error[c], 0.0);
+      EXPECT_LT(est[k].standard_error[c], 0.02 * exact[c]) << "the interval is too wide to test anything";
+      EXPECT_NEAR(est[k].B[c], exact[c], kSigmas * est[k].standard_error[c]) << "point " << k << " channel " << c;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Reflectances, ReferenceFurnace, ::testing::Values(0.5, 0.8));
+
+// Point-to-rectangle form factor, the point below a corner of an a × b rectangle at height c, parallel
+// (Howell's catalogue, B-3): F = 1/2π [A/√(1+A²) atan(B/√(1+A²)) + B/√(1+B²) atan(A/√(1+B²))].
+double corner_form_factor(double a, double b, double c) {
+  const double A = a / c, B = b / c, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
+  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * kPi);
+}
+
+TEST(ReferenceDirect, PointBelowASquareLight) {
+  Scene s;
+  s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {}});
+  s.materials.push_back({"light", {0, 0, 0}, {10, 10, 10}});
+  // Floor at y = 0 facing up; a 1 m square light at y = 1 facing down, centred over the origin.
+  s.polygons.push_back(test::quad({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0));
+  s.polygons.push_back(test::quad({-0.5, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {-0.5, 1, 0.5}, 1));
+  ASSERT_GT(polygon_normal(s.polygons[0]).y, 0);
+  ASSERT_LT(polygon_normal(s.polygons[1]).y, 0);
+  const RayScene rays(s);
+  const ReferenceTracer tracer(s, rays);
+  ReferenceSettings settings;
+  settings.samples = 8192;
+  uint64_t cast = 0;
+  const std::vector<SurfacePoint> points = {{0, {0, 0, 0}}, {0, {0.5, 0, 0}}, {0, {1.2, 0, 0.3}}};
+  const std::vector<RadiosityEstimate> est = tracer.estimate(points, settings, cast);
+  for (size_t k = 0; k < points.size(); ++k) {
+    const double x = points[k].position.x, z = points[k].position.z;
+    // The light as ± corner rectangles from the point's foot (signed widths add up).
+    auto f = [](double u, double v) { return std::copysign(1.0, u) * std::copysign(1.0, v) * corner_form_factor(std::fabs(u), std::fabs(v), 1.0); };
+    const double F = f(0.5 - x, 0.5 - z) - f(-0.5 - x, 0.5 - z) - f(0.5 - x, -0.5 - z) + f(-0.5 - x, -0.5 - z);
+    const double exact = 0.5 * 10 * F;
+    EXPECT_NEAR(est[k].B.x, exact, kSigmas * est[k].standard_error.x) << "point " << k << ", F = " << F;
+    EXPECT_LT(est[k].standard_error.x, 0.02 * exact);
+  }
+}
+
+TEST(ReferenceTracer, SameEstimatesWithOneAndTwoThreads) {
+  const Scene box = test::closed_box(1.0, {0.7, 0.6, 0.5}, {1, 1, 1});
+  const RayScene rays(box);
+  const ReferenceTracer tracer(box, rays);
+  std::vector<SurfacePoint> points;
+  for (uint32_t p = 0; p < box.polygons.size(); ++p) points.push_back({p, polygon_centroid(box.polygons[p])});
+  ReferenceSettings s;
+  s.samples = 64;
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    uint64_t cast = 0;
+    return tracer.estimate(points, s, cast);
+  };
+  const auto a = run(1), b = run(2);
+  for (size_t k = 0; k < points.size(); ++k) {
+    EXPECT_EQ(a[k].B, b[k].B);
+    EXPECT_EQ(a[k].standard_error, b[k].standard_error);
+  }
+}
+
+}  // namespace
+}  // namespace walkrad

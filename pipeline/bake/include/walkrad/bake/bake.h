@@ -1,0 +1,61 @@
+// bake: the offline pipeline end to end, as one function over plain settings (main() stays thin).
+// read scene + walkthrough → split polygons at contacts → solve (hierarchical: importance from the
+// viewpoints, refine/gather/push-pull over links; classic: uniform elements, full form factor matrix,
+// Gauss-Seidel) → exposure → vertex mesh → bake folder (manifest.json, chunk-NNNN.glb, report.json,
+// extinction.vdb when volume clusters are used), staged and swapped into place only when complete.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "walkrad/bake/bake_caps.h"
+
+namespace walkrad {
+
+struct BakeSettings {
+  std::string scene;        // .gltf / .glb
+  std::string views;        // walkthrough JSON; empty: the scene's cameras
+  bool view_independent = false;  // ignore viewpoints for refinement (BF oracle); exposure still uses them
+  std::string output;       // the bake folder
+  std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
+  std::string solver = "gauss-seidel";  // hierarchical: "gauss-seidel" (by input polygon) or "jacobi"
+  double epsilon = 1e-5;    // hierarchical: refine while B·I·ρ·F (or B·A·ρ·F) > ε × emitted power
+  double min_area = 0;      // hierarchical: smallest element, m² (0: (scene diagonal / 256)²)
+  double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30
+  int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
+  double exposure = 0;      // 0: automatic from the viewpoints
+  int threads = 0;          // 0: all cores
+  uint64_t chunk_triangles = 16384;
+  bool compress = true;              // Draco (KHR_draco_mesh_compression); false: plain glTF
+  double position_tolerance = 1e-5;  // Draco: position error, fraction of the scene's diagonal
+  double radiosity_tolerance = 1e-3; // Draco: _RADIOSITY error, fraction of the radiosity shown as white  // largest chunk, triangles (a lone leaf cluster may exceed it)
+  double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity
+  int max_iterations = 10000;
+  bool progress = true;     // progress lines on stderr
+  bool explain = false;     // print the effect plan (effect_plan.h) before solving
+  std::map<std::string, std::string> effects;  // effect plan overrides: name → "on" / "off"
+  // Volumetric visibility (volume_clusters.h, volume_visibility.h): a cluster of at least
+  // volume_min_polygons small objects is a volume; a link sees through it where its objects are
+  // smaller than volume_penumbra_ratio × the link's penumbra width there.
+  uint32_t volume_min_polygons = 64;
+  double volume_penumbra_ratio = 1.0;
+  BakeCaps caps;            // time and memory caps (not recorded: they do not change the result)
+
+  nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
+};
+
+struct BakeSummary {
+  std::string output;
+  size_t elements = 0;
+  size_t triangles = 0;
+  size_t viewpoints = 0;
+  double exposure = 1;
+  double seconds = 0;
+};
+
+// Throws InputError (bad scene or walkthrough), OutputError (cannot write), std::runtime_error.
+BakeSummary bake(const BakeSettings& settings);
+
+}  // namespace walkrad

@@ -1,0 +1,260 @@
+#include "walkrad/bake/bake.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "method_run.h"
+#include "walkrad/formats/chunk_writer.h"
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/gltf_reader.h"
+#include "walkrad/formats/manifest.h"
+#include "walkrad/formats/walkthrough.h"
+#include "walkrad/core/staged_output.h"
+#include "walkrad/output/chunk_optimizer.h"
+#include "walkrad/output/chunking.h"
+#include "walkrad/plan/effect_plan.h"
+#include "walkrad/scene/cluster_tree.h"
+#include "walkrad/scene/contact_split.h"
+#include "walkrad/scene/scene_cleanup.h"
+#include "walkrad/scene/transmission_twins.h"
+#include "walkrad/visibility/exposure.h"
+#include "walkrad/visibility/extinction_grid.h"
+#include "walkrad/visibility/volume_visibility.h"
+
+#ifndef WALKRAD_VERSION
+#define WALKRAD_VERSION "0.0.0"
+#endif
+
+namespace walkrad {
+
+using namespace bake_detail;
+
+namespace {
+
+// FNV-1a 64 of a file's bytes: identifies the input in the manifest (not a security hash).
+std::string hash_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  uint64_t h = 0xcbf29ce484222325ull;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ uint8_t(buf[i])) * 0x100000001b3ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+// Identifies what the extinction grid is made from: every polygon's corners and the volume settings
+// (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
+std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto add = [&](const void* data, size_t size) {
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    for (size_t k = 0; k < size; ++k) h = (h ^ bytes[k]) * 0x100000001b3ull;
+  };
+  for (const Polygon& p : scene.polygons) {
+    add(&p.count, sizeof p.count);
+    for (int k = 0; k < p.count; ++k) add(&p.v[size_t(k)], sizeof(Vec3));
+  }
+  add(&vs.min_polygons, sizeof vs.min_polygons);
+  add(&vs.feature_ratio, sizeof vs.feature_ratio);
+  add(&vs.small_object, sizeof vs.small_object);
+  add(&vs.max_dispersion, sizeof vs.max_dispersion);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+void write_json(const std::string& path, const json& j) {
+  std::ofstream out(path, std::ios::binary);
+  out << j.dump(2) << '\n';
+  if (!out) throw OutputError(path + ": cannot write");
+}
+
+}  // namespace
+
+json BakeSettings::to_json() const {
+  return {{"method", method},     {"solver", solver},       {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
+          {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
+          {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
+          {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
+          {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
+}
+
+BakeSummary bake(const BakeSettings& s) {
+  const auto t_start = Clock::now();
+  if (s.method != "classic" && s.method != "hierarchical")
+    throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
+  std::unique_ptr<tbb::global_control> limit;
+  if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
+  const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
+
+  const CapWatch caps(s.caps, s.scene);
+  Phases phases(s.progress, caps);
+  phases.start("read");
+  Scene input = read_scene(s.scene);
+  if (const uint64_t copies = remove_duplicate_polygons(input))
+    input.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
+  std::vector<Viewpoint> views = s.views.empty() ? input.cameras : read_walkthrough(s.views);
+  for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
+  bool any_emitter = false;
+  for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
+  for (const PunctualLight& l : input.lights) any_emitter = any_emitter || max_component(l.intensity) > 0;
+  if (!any_emitter)
+    throw InputError(s.scene, "", "the scene has no emitter (no material with emission, no punctual light): nothing to bake");
+  // Fail on an unwritable destination before the long work, not after it.
+  StagedOutput out(s.output);
+
+  phases.start("prepare");
+  const Bounds bounds = input.bounds();
+  ContactSplitStats split_stats;
+  Scene scene = split_contacts(input, split_stats);
+  // Transmission is decided first: its twins (back faces) are geometry, in the rays and the tree.
+  const Effect transmission = plan_transmission(scene, s.method, s.effects);
+  const std::vector<uint32_t> twins = transmission.on ? add_transmission_twins(scene) : std::vector<uint32_t>{};
+  const RayScene rays(scene);
+  const ClusterTree tree = build_cluster_tree(scene);
+  VolumeSettings volume_settings;
+  volume_settings.min_polygons = s.volume_min_polygons;
+  volume_settings.penumbra_ratio = s.volume_penumbra_ratio;
+  const VolumeClusters volume_clusters = s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{};
+  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects, &volume_clusters);
+  plan.transmission = transmission;
+  if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
+  // The extinction grid: reused from the previous bake in this folder when it was made from the same
+  // geometry and settings (its key), else rasterised.
+  ExtinctionGrid grid;
+  std::unique_ptr<RayScene> solid;
+  VolumeVisibility volume_visibility;
+  json volumes_report = {{"on", plan.volumes.on}};
+  if (plan.volumes.on) {
+    phases.start("volumes");
+    const std::string key = volume_key(scene, volume_settings);
+    const std::string previous = s.output + "/extinction.vdb";
+    bool reused = false;
+    if (std::filesystem::exists(previous)) {
+      try {
+        ExtinctionGrid old = ExtinctionGrid::read(previous);
+        if (old.metadata("geometry_key") == key) {
+          grid = std::move(old);
+          reused = true;
+        }
+      } catch (const InputError& e) {
+        std::fprintf(stderr, "walkrad: warning: %s: not reused (%s)\n", previous.c_str(), e.what());
+      }
+    }
+    if (!reused) grid = ExtinctionGrid::build(volume_clusters.boxes, ExtinctionGrid::choose_voxel_size(volume_clusters.boxes));
+    grid.write(out.path("extinction.vdb"), {{"geometry_key", key},
+                                           {"volume_clusters", std::to_string(volume_clusters.boxes.size())},
+                                           {"volume_polygons", std::to_string(volume_clusters.volume_polygons)},
+                                           {"min_polygons", std::to_string(volume_settings.min_polygons)},
+                                           {"feature_ratio", json(volume_settings.feature_ratio).dump()},
+                                           {"penumbra_ratio", json(volume_settings.penumbra_ratio).dump()}});
+    solid = std::make_unique<RayScene>(scene, volume_clusters.polygon_in_volume);
+    volume_visibility = {&volume_clusters, &grid, solid.get(), volume_settings.penumbra_ratio};
+    const ExtinctionGrid::Stats gs = grid.stats();
+    volumes_report = {{"on", true}, {"grid", reused ? "reused" : "built"}, {"file", "extinction.vdb"},
+                      {"clusters", volume_clusters.boxes.size()}, {"polygons", volume_clusters.volume_polygons},
+                      {"voxel_size_m", gs.voxel_size}, {"active_voxels", gs.active_voxels}, {"kappa_max", gs.kappa_max},
+                      {"min_polygons", volume_settings.min_polygons}, {"feature_ratio", volume_settings.feature_ratio},
+                      {"penumbra_ratio", volume_settings.penumbra_ratio}};
+  }
+  const MethodResult result = s.method == "classic"
+                                  ? run_classic(s, scene, rays, tree, bounds, plan, phases)
+                                  : run_hierarchical(s, scene, rays, tree, views, plan, twins,
+                                                       plan.volumes.on ? &volume_visibility : nullptr, phases);
+
+  phases.start("exposure");
+  uint64_t exposure_rays = 0;
+  double exposure = s.exposure;
+  if (exposure <= 0) {
+    exposure = auto_exposure(
+        views, rays, 64, result.radiosity_at,
+        [&](uint32_t poly) { return scene.materials[scene.polygons[poly].material].emits(); }, exposure_rays);
+    if (views.empty()) exposure = result.surface_exposure;
+  }
+
+  phases.start("mesh");
+  const SurfaceMesh surface = result.mesh(exposure);
+
+  phases.start("chunks");
+  ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);
+  for (ChunkMesh& m : cut.meshes) optimize_chunk(m);
+  ChunkEncoding encoding;
+  if (s.compress) {
+    // One grid for every chunk (borders quantise alike). White on screen is B = π / exposure.
+    float radiosity_max = 0;
+    for (float b : surface.mesh.radiosity) radiosity_max = std::max(radiosity_max, b);
+    encoding = draco_encoding(surface.mesh.bounds(), s.position_tolerance * length(bounds.diagonal()), radiosity_max,
+                              s.radiosity_tolerance * kPi / exposure);
+  }
+  uint64_t chunk_rays = 0;
+  // Fine enough that a sliver of a chunk seen through a doorway is not missed (a runtime would leave it
+  // unloaded): up to 128² rays a view, about 4 million rays in all for long walkthroughs.
+  const int chunk_grid = std::clamp(int(std::sqrt(4.0e6 / double(std::max<size_t>(views.size(), 1)))), 32, 128);
+  const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), chunk_grid, chunk_rays);
+
+  phases.start("write");
+  Manifest manifest;
+  manifest.tool = std::string("walkrad ") + WALKRAD_VERSION;
+  manifest.scene_file = s.scene;
+  manifest.scene_hash = hash_file(s.scene);
+  manifest.bounds = surface.mesh.bounds();
+  manifest.exposure = exposure;
+  manifest.viewpoints = views;
+  manifest.settings = s.to_json();
+  manifest.effects = plan.to_json();
+  for (size_t c = 0; c < cut.meshes.size(); ++c) {
+    char name[32];
+    std::snprintf(name, sizeof name, "chunk-%04zu.glb", c);
+    ChunkInfo chunk;
+    chunk.file = name;
+    chunk.bounds = cut.meshes[c].bounds();
+    chunk.triangles = cut.meshes[c].triangle_count();
+    chunk.bytes = write_chunk(out.path(chunk.file), cut.meshes[c], encoding);
+    chunk.importance = importance[c];
+    manifest.chunks.push_back(chunk);
+  }
+  write_json(out.path("manifest.json"), manifest_to_json(manifest));
+  phases.finish();
+
+  const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  json counts = result.counts;
+  counts["input_polygons"] = input.polygons.size();
+  counts["polygons"] = scene.polygons.size();
+  counts["contact_cuts"] = split_stats.cuts;
+  counts["exposure_rays"] = exposure_rays;
+  counts["triangles"] = surface.mesh.triangle_count();
+  counts["chunks"] = cut.meshes.size();
+  counts["chunk_importance_rays"] = chunk_rays;
+  counts["viewpoints"] = views.size();
+  counts["dropped_degenerate"] = input.dropped_degenerate;
+  json report = {
+      {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
+      {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
+      {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
+      {"volumes", volumes_report},
+  };
+  write_json(out.path("report.json"), report);
+  out.commit();
+
+  BakeSummary summary;
+  summary.output = s.output;
+  summary.elements = result.counts.value("elements", uint64_t(0));
+  summary.triangles = surface.mesh.triangle_count();
+  summary.viewpoints = views.size();
+  summary.exposure = exposure;
+  summary.seconds = seconds;
+  return summary;
+}
+
+}  // namespace walkrad

@@ -1,0 +1,130 @@
+// Form factors by Lambert's contour formula (formfactor.h).
+#include "walkrad/formfactor/form_factor.h"
+#include "walkrad/core/rounding.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace walkrad {
+
+namespace {
+
+
+// Gauss-Legendre abscissae and weights on [0, 1], orders 1..8.
+struct GaussRule {
+  std::array<double, 8> x, w;
+};
+
+GaussRule gauss_rule(int order) {
+  // Nodes and weights on [-1, 1] (Abramowitz & Stegun, table 25.4), mapped to [0, 1].
+  static const std::vector<std::vector<std::pair<double, double>>> table = {
+      {{0.0, 2.0}},
+      {{-0.5773502691896257, 1.0}, {0.5773502691896257, 1.0}},
+      {{-0.7745966692414834, 0.5555555555555556}, {0.0, 0.8888888888888888}, {0.7745966692414834, 0.5555555555555556}},
+      {{-0.8611363115940526, 0.3478548451374538}, {-0.3399810435848563, 0.6521451548625461},
+       {0.3399810435848563, 0.6521451548625461}, {0.8611363115940526, 0.3478548451374538}},
+      {{-0.9061798459386640, 0.2369268850561891}, {-0.5384693101056831, 0.4786286704993665}, {0.0, 0.5688888888888889},
+       {0.5384693101056831, 0.4786286704993665}, {0.9061798459386640, 0.2369268850561891}},
+      {{-0.9324695142031521, 0.1713244923791704}, {-0.6612093864662645, 0.3607615730481386},
+       {-0.2386191860831969, 0.4679139345726910}, {0.2386191860831969, 0.4679139345726910},
+       {0.6612093864662645, 0.3607615730481386}, {0.9324695142031521, 0.1713244923791704}},
+      {{-0.9491079123427585, 0.1294849661688697}, {-0.7415311855993945, 0.2797053914892766},
+       {-0.4058451513773972, 0.3818300505051189}, {0.0, 0.4179591836734694}, {0.4058451513773972, 0.3818300505051189},
+       {0.7415311855993945, 0.2797053914892766}, {0.9491079123427585, 0.1294849661688697}},
+      {{-0.9602898564975363, 0.1012285362903763}, {-0.7966664774136267, 0.2223810344533745},
+       {-0.5255324099163290, 0.3137066458778873}, {-0.1834346424956498, 0.3626837833783620},
+       {0.1834346424956498, 0.3626837833783620}, {0.5255324099163290, 0.3137066458778873},
+       {0.7966664774136267, 0.2223810344533745}, {0.9602898564975363, 0.1012285362903763}},
+  };
+  GaussRule r{};
+  const auto& row = table[std::clamp(order, 1, 8) - 1];
+  for (size_t i = 0; i < row.size(); ++i) {
+    r.x[i] = 0.5 * (row[i].first + 1.0);
+    r.w[i] = 0.5 * row[i].second;
+  }
+  return r;
+}
+
+}  // namespace
+
+std::vector<Vec3> clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count) {
+  // Sutherland-Hodgman against one plane.
+  std::vector<Vec3> out;
+  out.reserve(count + 1);
+  for (int k = 0; k < count; ++k) {
+    const Vec3& a = v[k];
+    const Vec3& b = v[(k + 1) % count];
+    const double da = dot(a - p, n), db = dot(b - p, n);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) {
+  const Vec3 pn = polygon_area_normal(poly);
+  const double plane_distance = dot(p - poly.v[0], pn);
+  // On the source's plane (within 1e-12 of its size, or rounding): the polygon subtends no solid
+  // angle (and the formula would mix ±β).
+  const double pl = length(pn);
+  if (std::fabs(plane_distance) <= pl * (1e-12 * std::sqrt(pl) + rounding_at(p))) return 0.0;
+
+  const std::vector<Vec3> v = clip_to_hemisphere(p, n, poly.v.data(), poly.count);
+  if (v.size() < 3) return 0.0;
+  double sum = 0.0;
+  for (size_t k = 0; k < v.size(); ++k) {
+    const Vec3 r0 = v[k] - p, r1 = v[(k + 1) % v.size()] - p;
+    const Vec3 c = cross(r0, r1);
+    const double cl = length(c);
+    if (cl <= 0) continue;  // p on the edge's line: the edge subtends no angle
+    const double beta = std::atan2(cl, dot(r0, r1));
+    sum += beta * dot(n, c) / cl;
+  }
+  // The sign of the sum follows the winding seen from p; the form factor is its magnitude.
+  return std::fabs(sum) / (2.0 * kPi);
+}
+
+std::vector<QuadraturePoint> quadrature_points(const Polygon& r, int order) {
+  const GaussRule g = gauss_rule(order);
+  order = std::clamp(order, 1, 8);
+  const Vec3 v0 = r.v[0], v1 = r.v[1], v2 = r.v[2], v3 = r.count == 4 ? r.v[3] : r.v[2];
+  std::vector<QuadraturePoint> pts;
+  pts.reserve(order * order);
+  for (int a = 0; a < order; ++a) {
+    for (int b = 0; b < order; ++b) {
+      const double s = g.x[a], t = g.x[b];
+      // Bilinear map of the unit square; for a triangle v3 = v2 collapses the edge t = 1.
+      const Vec3 pos = v0 * ((1 - s) * (1 - t)) + v1 * (s * (1 - t)) + v2 * (s * t) + v3 * ((1 - s) * t);
+      const Vec3 ds = (v1 - v0) * (1 - t) + (v2 - v3) * t;
+      const Vec3 dt = (v3 - v0) * (1 - s) + (v2 - v1) * s;
+      pts.push_back({pos, g.w[a] * g.w[b] * length(cross(ds, dt))});
+    }
+  }
+  return pts;
+}
+
+int quadrature_order(double distance, double receiver_size, double source_size) {
+  const double ratio = distance / std::max(receiver_size, source_size);
+  if (clearly_greater(ratio, 4.0)) return 2;
+  if (clearly_greater(ratio, 2.0)) return 3;
+  if (clearly_greater(ratio, 1.0)) return 4;
+  return 8;
+}
+
+double element_to_element(const Polygon& receiver, const Polygon& source) {
+  const Vec3 n = polygon_normal(receiver);
+  const double area = polygon_area(receiver);
+  if (area <= 0) return 0.0;
+  const Vec3 sn = polygon_normal(source);
+  const double distance = length(polygon_centroid(receiver) - polygon_centroid(source));
+  const int order = quadrature_order(distance, std::sqrt(area), std::sqrt(polygon_area(source)));
+  double sum = 0.0;
+  for (const QuadraturePoint& q : quadrature_points(receiver, order)) {
+    if (dot(q.position - source.v[0], sn) <= 0) continue;  // behind the source: sees its back
+    sum += q.weight * point_to_polygon(q.position, n, source);
+  }
+  return sum / area;
+}
+
+}  // namespace walkrad

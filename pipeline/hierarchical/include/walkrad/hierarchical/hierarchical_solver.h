@@ -1,0 +1,100 @@
+// Hierarchical radiosity with clustering and importance (algorithms.md §5–7): Hanrahan, Salzman &
+// Aupperle 1991 (links between nodes at the level where the transfer is accurate enough); Smits,
+// Arvo & Salesin 1992 (importance emitted from the viewpoints, shot back along the same links, so
+// that refinement goes where the walkthrough looks); Smits, Arvo & Greenberg 1994 and Sillion 1995
+// (clusters as isotropic volumes of small surfaces: mean projected area A/4).
+//
+// The loop starts from one link of the root cluster to itself and repeats
+//   refine:    split link (i ← j) while  B_j · W_i · ρ_i · F_ij > ε Φ
+//              (W_i = importance I_i with viewpoints, area A_i without: the BF oracle; Φ = emitted
+//              power), dividing the end with the larger bounds, until elements reach the minimum
+//              area or the depth limit; and split a receiver whose links together misplace more
+//              than ε: Σ_j B_j · spread_ij · W_i · ρ_i, spread_ij being how much the point form
+//              factor to j varies over the receiver (each link's irradiance is pushed uniformly
+//              to the children; near corners their true shares differ, and row sums drift from 1);
+//   evaluate:  new links' form factors with visibility (shaft culling, then Embree rays), in parallel;
+//   solve:     gather H_i = Σ F_ij B_j along links (Gauss-Seidel by input polygon, or Jacobi), push-pull (irradiance pushed down, B = E + ρH at
+//              the leaves, B area-averaged up), and importance shot along the same links
+//              (I_j += ρ_i F_ij I_i), pushed down by area and summed up;
+// until no link is refined and the radiosity stops changing.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "walkrad/formats/scene.h"
+#include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/visibility/ray_scene.h"
+#include "walkrad/visibility/volume_visibility.h"
+
+namespace walkrad {
+
+struct HierarchicalSettings {
+  double epsilon = 1e-4;      // refinement threshold, relative to the emitted power
+  bool use_importance = true; // importance oracle when the hierarchy has view hits; else BF
+  double min_area = 0;        // m²; elements are not split below it (0: (scene diagonal / 256)²)
+  int max_depth = 16;         // quadtree levels below an input polygon
+  int rays = 16;              // visibility rays (or Monte Carlo samples) per link, ×2 with more than 4
+                              // candidate occluders, ×4 with more than 64, ×2 when the link is kept
+                              // above ε because neither end may split
+  double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps
+  int max_iterations = 64;    // refine + solve rounds
+  int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
+  bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
+  bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
+  bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)
+  // The scene is closed (effect plan: no ray escapes): every leaf must receive a row sum of 1 and
+  // send all of its power B·A, which coarse links satisfy only roughly (they push irradiance
+  // uniformly and take radiosity by area: row sums 0.80–1.25 in an empty lit box, which lost 2.7% of
+  // its power). Closed: both are restored by scaling each leaf's gather and send (link_transport.h).
+  bool closed = false;
+  // Aggregation correction after every sweep (link_transport.h): removes the slow overall mode of
+  // Gauss-Seidel at high reflectance (furnace ρ 0.99: 611 sweeps without).
+  bool accelerate = true;
+  // Punctual lights (punctual_lights.h), shot straight to the elements: an element is split while the
+  // irradiance they give varies over it by more than ε allows (ρ · spread · W > ε Φ). Not owned.
+  const std::vector<PunctualLight>* lights = nullptr;
+  // Transmission twins per polygon (transmission.h; kNoTwin: none): a leaf of a transmitting polygon
+  // adds τ × what its twin receives at its centroid. No aggregation correction then. Not owned.
+  const std::vector<uint32_t>* twins = nullptr;
+  // Volumetric visibility through volume clusters (volume_visibility.h); null: exact rays only. Not owned.
+  const VolumeVisibility* volumes = nullptr;
+};
+
+struct IterationStats {
+  uint64_t links = 0, new_links = 0, elements = 0, rays = 0;
+  double change = 0;                   // largest relative change of B at the leaves
+  int sweeps = 0;                      // gather/push-pull sweeps this round
+  Vec3 emitted, absorbed;              // W, at the leaves
+  Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
+  uint64_t clamped_leaves = 0;         // leaves whose row sum Σ F exceeded 1.5 (irradiance scaled back)
+};
+
+struct HierarchicalStats {
+  std::vector<IterationStats> iterations;
+  uint64_t links = 0, rays = 0, unoccluded_links = 0, monte_carlo_links = 0;
+  uint64_t refinements = 0;            // links split
+  bool converged = false;
+  double epsilon_absolute = 0;         // ε Φ, in W
+  std::string oracle;                  // "importance" or "BF"
+  double left_error_max = 0, left_error_sum = 0;  // B·W·ρ·F left on the final links (W)
+  int corrections = 0;                 // aggregation corrections applied
+  uint64_t light_rays = 0;             // shadow rays towards punctual lights
+  uint64_t light_refinements = 0;      // elements split for the punctual lights' variation
+  int balance_iterations = 0;          // Sinkhorn iterations (closed scenes), all rounds
+  double balance_row_error = 0, balance_column_error = 0;  // after the last balance
+  uint64_t balance_unbalanced = 0;     // leaves the last balance left alone (hidden, coincident)
+  // Visibility per link: unoccluded_links (nothing in the shaft), exact_links (Embree rays against
+  // every polygon), volume_links (volume clusters as media, volume_visibility.h: transmittance through
+  // the grid, rays against the rest if anything else is in the shaft).
+  uint64_t exact_links = 0, volume_links = 0;
+  uint64_t grid_segments = 0;          // transmittance integrations through the extinction grid
+};
+
+// progress(message) is called after each round (may be empty).
+void solve_hierarchical(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& settings, HierarchicalStats& stats,
+                        const std::function<void(const IterationStats&)>& progress = {});
+
+}  // namespace walkrad

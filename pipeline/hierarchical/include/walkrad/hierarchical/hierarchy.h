@@ -1,0 +1,123 @@
+// The hierarchy of hierarchical radiosity with clustering (Hanrahan, Salzman & Aupperle 1991; Smits,
+// Arvo & Greenberg 1994; Sillion 1995; algorithms.md §5, §7): cluster nodes mirror the ClusterTree
+// (one root cluster over the whole scene), each leaf cluster's polygons are element roots, and each
+// element splits lazily into 4 (a quad by its bilinear midpoints, a triangle by its edge midpoints).
+//
+// A node carries the solution at its level: radiosity B (area-averaged over what is below), the
+// irradiance H gathered along its links this iteration, and importance I (Smits, Arvo & Salesin
+// 1992), which is extensive: a parent's importance is the sum of its children's.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "walkrad/formats/scene.h"
+#include "walkrad/scene/cluster_tree.h"
+
+namespace walkrad {
+
+// A transfer: the receiver gathers H += F · B_source. F is the form factor from the receiver to the
+// source (visibility included), for clusters with the isotropic mean projected area A/4.
+struct Link {
+  uint32_t source = 0;
+  double F = 0;
+  double spread = 0;  // how much the point form factor varies over the receiver: its range over an
+                      // element, its mean deviation between a cluster's children (transfer misplaced
+                      // by pushing it uniformly)
+};
+
+struct HNode {
+  Bounds bounds;
+  Vec3 center;            // of the bounds
+  double radius = 0;      // half the bounds' diagonal
+  double area = 0;        // one-sided area (element) or the total below (cluster)
+  bool cluster = false;
+  uint8_t depth = 0;      // element: 0 for an input polygon
+  uint32_t polygon = UINT32_MAX;  // element: its input polygon
+  uint32_t tree_node = UINT32_MAX;  // cluster: its ClusterTree node
+  int32_t parent = -1;
+  uint32_t child_begin = 0, child_count = 0;  // into Hierarchy::children
+  Polygon shape;          // element
+  Vec3 normal;            // element
+  Vec3 rho, emission;     // element; cluster: area averages (used by the refinement oracle)
+
+  Vec3 B, H;              // radiosity, irradiance gathered this iteration
+  Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
+  double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
+  double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
+  bool balanced = false;  // leaf: its factors make its row sum exactly 1 (balance_closed_transport)
+  Vec3 D;                 // element: irradiance from punctual lights (punctual_lights.h), its area mean
+  Vec3 Hl;                // leaf element: the irradiance its links and its ancestors' gave, last solved
+  bool D_known = false;   // D computed (new elements get theirs before they are solved)
+  double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
+  double R = 0;           // direct importance (leaf elements; summed up in clusters)
+  double I = 0, Ig = 0;   // importance, importance gathered this iteration
+  uint32_t hit_begin = 0, hit_end = 0;  // element: its view hits, Hierarchy::hits()[begin, end)
+  std::vector<Link> links;  // links where this node receives
+};
+
+// A primary-ray hit from a viewpoint: where a walkthrough looks, and how much (its share of the
+// views' solid angle). Summed over an element, the hits give its direct importance R.
+struct ViewHit {
+  uint32_t polygon;
+  Vec3 point;
+  double weight;
+  uint32_t view = 0;  // index of the viewpoint it came from
+};
+
+class Hierarchy {
+ public:
+  // sample_textures: elements take their textures' mean over their own area (texture_sampling.h).
+  Hierarchy(const Scene& scene, const ClusterTree& tree, bool sample_textures = false);
+
+  const Scene& scene() const { return scene_; }
+  const ClusterTree& tree() const { return tree_; }
+  std::vector<HNode>& nodes() { return nodes_; }
+  const std::vector<HNode>& nodes() const { return nodes_; }
+  HNode& operator[](uint32_t i) { return nodes_[i]; }
+  const HNode& operator[](uint32_t i) const { return nodes_[i]; }
+  uint32_t root() const { return 0; }
+  uint32_t child(const HNode& n, uint32_t k) const { return children_[n.child_begin + k]; }
+
+  // Splits an element into 4 children (no-op when it already has them). Returns false for a cluster
+  // (its children always exist).
+  bool subdivide(uint32_t element);
+
+  // The input polygons under a cluster node, as a range of ClusterTree::polygons.
+  uint32_t polygon_begin(const HNode& cluster) const { return tree_.nodes[cluster.tree_node].first; }
+  uint32_t polygon_count(const HNode& cluster) const { return tree_.nodes[cluster.tree_node].count; }
+
+  // A point of the node for visibility and Monte Carlo transfers, from (u, v, w) ∈ [0,1)³: on an
+  // element, by area; in a cluster, on one of its polygons chosen by area. normal: that surface's.
+  // child: set to which of a cluster's children holds the point (0 for an element).
+  void sample(const HNode& n, double u, double v, double w, Vec3& point, Vec3& normal, uint32_t* child = nullptr) const;
+
+  size_t element_count() const { return element_count_; }
+  // The element root of an input polygon.
+  uint32_t polygon_root(uint32_t polygon) const { return polygon_root_[polygon]; }
+
+  // Direct importance: every element's R is the weight of the hits inside it, clusters' R the sum
+  // below. Hits follow elements as they split.
+  void set_view_hits(std::vector<ViewHit> hits);
+  const std::vector<ViewHit>& hits() const { return hits_; }
+
+ private:
+  uint32_t add_element(const Polygon& shape, uint32_t polygon, int32_t parent, uint8_t depth);
+  uint32_t add_cluster(uint32_t tree_node, int32_t parent);
+
+  const Scene& scene_;
+  const ClusterTree& tree_;
+  bool sample_textures_ = false;
+  std::vector<HNode> nodes_;
+  std::vector<uint32_t> children_;
+  std::vector<double> area_prefix_;  // prefix sums of polygon areas in ClusterTree::polygons order
+  std::vector<ViewHit> hits_;
+  std::vector<uint32_t> polygon_root_;        // grouped by element, each element's hits contiguous
+  size_t element_count_ = 0;
+};
+
+// The leaf element containing a point of an input polygon (the gather at a point, transmission, tests).
+// (max_depth: stop at that quadtree depth even if the node there has children.)
+uint32_t leaf_at(const Hierarchy& h, uint32_t polygon_root, const Vec3& p, int max_depth = 255);
+
+}  // namespace walkrad

@@ -1,0 +1,64 @@
+// The transport operator that a hierarchy's links define between its leaves, applied outside the
+// solver's sweeps, and the two corrections built on it (issue 9):
+//
+//   T x at leaf i:  a_i Σ_{links (p ← q), p = i or an ancestor} F_pq · x̄_q,   x̄_q = area mean of s·x over q's leaves
+//
+// (a_i: the leaf's receive factor, s_j its send factor; both 1 unless balanced below).
+//
+// - balance_closed_transport: in a closed scene every leaf must receive a row sum of 1 (a furnace
+//   stays uniform) and send all of its power (energy is conserved). Links between coarse nodes satisfy
+//   neither exactly: pushed irradiance and area-averaged radiosity misplace transfer near corners (row
+//   sums 0.80–1.25 in an empty box). The leaf-to-leaf matrix is scaled on both sides, diag(a) T diag(s),
+//   by Sinkhorn–Knopp iteration (Sinkhorn & Knopp 1967): alternately a_i = 1 / (row sum) and
+//   s_j = 1 / (power sent per unit emitted), until both hold.
+// - aggregation_correction: the slowest mode of Gauss-Seidel at high reflectance is the scene's overall
+//   level of reflected light; scaling the reflected radiosity v = B − E − ρD (D: punctual lights) by the 1 + c that zeroes the
+//   area-weighted residual removes it (Chatelin & Miranker 1982; the same correction as the classic
+//   solver's, gauss_seidel.h, here through the links).
+#pragma once
+
+#include <vector>
+
+#include "walkrad/hierarchical/hierarchy.h"
+
+namespace walkrad {
+
+// A leaf's row sum well above 1 means it receives more than any enclosure could send it (coincident
+// surfaces in the input): its irradiance is scaled back to a row sum of 1. See hierarchical_solver.cpp.
+// Balanced leaves are exempt: their factors make a Σ F s exactly 1, whatever a Σ F is (a receive
+// factor of 2.6 against sources sending 0.38 was clamped as coincident and lost that light).
+constexpr double kMaxRowSum = 1.5;
+
+inline bool is_leaf_element(const HNode& n) { return !n.cluster && n.child_count == 0; }
+
+// The irradiance a leaf receives from H gathered along its own links and its ancestors' (row sum S):
+// times its receive factor, scaled back above kMaxRowSum. clamped: set when scaled back.
+Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* clamped = nullptr);
+
+// T x for x given at the leaves (indexed by node; other entries ignored). Result indexed by node,
+// zero except at leaf elements. Deterministic: sums in a fixed order.
+std::vector<Vec3> apply_transport(const Hierarchy& h, const std::vector<Vec3>& x);
+
+// Each node's area mean of its leaf elements' receive factors.
+std::vector<double> mean_receive(const Hierarchy& h);
+
+// Recomputes every non-leaf node's B and Bt as the area means of its leaves' (Bt = B × send).
+void pull_up_radiosity(Hierarchy& h);
+
+struct BalanceStats {
+  int iterations = 0;
+  double row_error = 0, column_error = 0;  // largest |row sum − 1|, |sent / had − 1| over balanced leaves
+  uint64_t unbalanced = 0;                 // leaves left alone: unscaled sums outside [1/4, 4]
+};
+
+// Sets every leaf's receive and send factors so that, in a closed scene, each leaf's row sum is 1 and
+// it sends what it has. Ends with a row update (rows exact: a furnace is uniform). Factors bounded to
+// [1/4, 4]; leaves whose unscaled sums lie outside that (hidden or coincident pieces) keep 1.
+// Warm-started from the factors already there (a later round's links differ little).
+BalanceStats balance_closed_transport(Hierarchy& h, double tolerance = 1e-9, int max_iterations = 25);
+
+// One aggregation correction of the leaves' radiosity (indirect light on). Returns the largest
+// change of a leaf's B relative to max(its B, floor). Updates B and Bt everywhere.
+double aggregation_correction(Hierarchy& h, double floor = 0);
+
+}  // namespace walkrad

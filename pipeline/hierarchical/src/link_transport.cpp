@@ -1,0 +1,211 @@
+#include "walkrad/hierarchical/link_transport.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace walkrad {
+
+namespace {
+
+constexpr double kMinFactor = 0.25, kMaxFactor = 4.0;
+constexpr double kMinRaw = 0.25, kMaxRaw = 4.0;  // unscaled sums of the leaves that are balanced
+
+Vec3 abs3(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+
+// Area mean over each node's leaf elements of value(leaf) (clusters without elements: 0). Nodes are
+// stored parents first, so a reverse pass sees every child before its parent.
+template <class T, class F>
+void area_means(const Hierarchy& h, std::vector<T>& mean, F value) {
+  const std::vector<HNode>& nodes = h.nodes();
+  mean.assign(nodes.size(), T{});
+  for (size_t k = nodes.size(); k-- > 0;) {
+    const HNode& n = nodes[k];
+    if (n.child_count == 0) {
+      if (!n.cluster) mean[k] = value(n, k);
+      continue;
+    }
+    T sum{};
+    for (uint32_t c = 0; c < n.child_count; ++c) {
+      const uint32_t child = h.child(n, c);
+      sum = sum + mean[child] * nodes[child].area;
+    }
+    mean[k] = n.area > 0 ? sum * (1.0 / n.area) : T{};
+  }
+}
+
+// Sums along each node's path from the root of per-node values (parents come first).
+std::vector<double> path_sums(const Hierarchy& h, const std::vector<double>& per_node) {
+  std::vector<double> path(per_node.size(), 0.0);
+  for (size_t k = 0; k < per_node.size(); ++k) {
+    const int32_t parent = h.nodes()[k].parent;
+    path[k] = per_node[k] + (parent >= 0 ? path[size_t(parent)] : 0.0);
+  }
+  return path;
+}
+
+// Row sums of every leaf, Σ F s̄ along its path, with send factors send(node).
+template <class F>
+std::vector<double> row_sums(const Hierarchy& h, F send) {
+  std::vector<double> mean;
+  area_means(h, mean, [&](const HNode& n, size_t) { return send(n); });
+  std::vector<double> per_node(h.nodes().size(), 0.0);
+  for (size_t k = 0; k < h.nodes().size(); ++k)
+    for (const Link& l : h.nodes()[k].links) per_node[k] += l.F * mean[l.source];
+  return path_sums(h, per_node);
+}
+
+// What every leaf's unit radiosity delivers per unit area, Σ F A_p ā_p / A_q along its path over the
+// links (p ← q) leaving q, with receive factors receive(node).
+template <class F>
+std::vector<double> column_sums(const Hierarchy& h, F receive) {
+  const std::vector<HNode>& nodes = h.nodes();
+  std::vector<double> mean;
+  area_means(h, mean, [&](const HNode& n, size_t) { return receive(n); });
+  std::vector<double> per_node(nodes.size(), 0.0);
+  for (size_t k = 0; k < nodes.size(); ++k)  // sequential: a fixed order of sums
+    for (const Link& l : nodes[k].links) per_node[l.source] += l.F * nodes[k].area * mean[k] / nodes[l.source].area;
+  return path_sums(h, per_node);
+}
+
+// Sets every balanced leaf's factor to 1 / its sum. Returns the largest change of a factor.
+double set_factors(Hierarchy& h, const std::vector<double>& sums, bool receive) {
+  double change = 0;
+  for (size_t k = 0; k < sums.size(); ++k) {
+    HNode& n = h.nodes()[k];
+    if (!n.balanced) continue;
+    const double f = std::clamp(1.0 / sums[k], kMinFactor, kMaxFactor);
+    double& slot = receive ? n.receive : n.send;
+    change = std::max(change, std::fabs(f - slot));
+    slot = f;
+  }
+  return change;
+}
+
+}  // namespace
+
+std::vector<double> mean_receive(const Hierarchy& h) {
+  std::vector<double> mean;
+  area_means(h, mean, [](const HNode& n, size_t) { return n.receive; });
+  return mean;
+}
+
+Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* clamped) {
+  const double s = row_sum * leaf.receive;
+  if (s > kMaxRowSum && !leaf.balanced) {
+    if (clamped) *clamped = true;
+    return H * (leaf.receive / s);
+  }
+  return H * leaf.receive;
+}
+
+std::vector<Vec3> apply_transport(const Hierarchy& h, const std::vector<Vec3>& x) {
+  const std::vector<HNode>& nodes = h.nodes();
+  std::vector<Vec3> sent;
+  area_means(h, sent, [&](const HNode& n, size_t k) { return x[k] * n.send; });
+  std::vector<Vec3> down(nodes.size()), out(nodes.size());
+  std::vector<double> row(nodes.size(), 0.0);
+  for (size_t k = 0; k < nodes.size(); ++k) {  // parents first: their totals are ready
+    const HNode& n = nodes[k];
+    Vec3 H = n.parent >= 0 ? down[size_t(n.parent)] : Vec3{};
+    double r = n.parent >= 0 ? row[size_t(n.parent)] : 0.0;
+    for (const Link& l : n.links) {
+      H += sent[l.source] * l.F;
+      r += l.F;
+    }
+    down[k] = H;
+    row[k] = r;
+    if (is_leaf_element(n)) out[k] = leaf_irradiance(n, H, r);
+  }
+  return out;
+}
+
+void pull_up_radiosity(Hierarchy& h) {
+  std::vector<HNode>& nodes = h.nodes();
+  for (size_t k = nodes.size(); k-- > 0;) {
+    HNode& n = nodes[k];
+    if (n.child_count == 0) {
+      if (!n.cluster) n.Bt = n.B * n.send;
+      continue;
+    }
+    Vec3 b, bt;
+    for (uint32_t c = 0; c < n.child_count; ++c) {
+      const HNode& child = nodes[h.child(n, c)];
+      b += child.B * child.area;
+      bt += child.Bt * child.area;
+    }
+    n.B = n.area > 0 ? b / n.area : Vec3{};
+    n.Bt = n.area > 0 ? bt / n.area : Vec3{};
+  }
+}
+
+BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_iterations) {
+  BalanceStats stats;
+  const std::vector<HNode>& nodes = h.nodes();
+  // Leaves whose unscaled row or column sum is far from 1 are not a matter of distribution: a piece
+  // hidden under furniture (no link reaches it) or coincident surfaces. They keep factors of 1, so
+  // that the rest converges (their bounded factors would fight the others' and never settle).
+  const auto one = [](const HNode&) { return 1.0; };
+  const std::vector<double> raw_rows = row_sums(h, one), raw_columns = column_sums(h, one);
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    HNode& n = h.nodes()[k];
+    n.balanced = false;  // also on nodes that were leaves in an earlier round
+    if (!is_leaf_element(n)) continue;
+    n.balanced = raw_rows[k] >= kMinRaw && raw_rows[k] <= kMaxRaw && raw_columns[k] >= kMinRaw && raw_columns[k] <= kMaxRaw;
+    if (!n.balanced) {
+      n.send = n.receive = 1.0;
+      ++stats.unbalanced;
+    }
+  }
+  const auto send = [](const HNode& n) { return n.send; };
+  const auto receive = [](const HNode& n) { return n.receive; };
+  for (stats.iterations = 1; stats.iterations <= max_iterations; ++stats.iterations) {
+    const double columns = set_factors(h, column_sums(h, receive), false);
+    const double rows = set_factors(h, row_sums(h, send), true);
+    if (std::max(columns, rows) <= tolerance) break;
+  }
+  stats.iterations = std::min(stats.iterations, max_iterations);
+  // What is left, over the balanced leaves: rows are exact after the last row update (but for bounded
+  // factors); the columns are off by what one more column update would change.
+  const std::vector<double> rows = row_sums(h, send), columns = column_sums(h, receive);
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    if (!nodes[k].balanced) continue;
+    stats.row_error = std::max(stats.row_error, std::fabs(rows[k] * nodes[k].receive - 1.0));
+    stats.column_error = std::max(stats.column_error, std::fabs(columns[k] * nodes[k].send - 1.0));
+  }
+  return stats;
+}
+
+double aggregation_correction(Hierarchy& h, double floor) {
+  std::vector<HNode>& nodes = h.nodes();
+  std::vector<Vec3> b(nodes.size()), v(nodes.size());
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (is_leaf_element(nodes[k])) {
+      b[k] = nodes[k].B;
+      v[k] = nodes[k].B - nodes[k].emission - mul(nodes[k].rho, nodes[k].D);
+    }
+  const std::vector<Vec3> tb = apply_transport(h, b), tv = apply_transport(h, v);
+  Vec3 num, den, total;
+  for (size_t k = 0; k < nodes.size(); ++k) {  // sequential: a fixed order of sums
+    const HNode& n = nodes[k];
+    if (!is_leaf_element(n)) continue;
+    num += (n.emission + mul(n.rho, tb[k] + n.D) - n.B) * n.area;
+    den += (v[k] - mul(n.rho, tv[k])) * n.area;
+    total += v[k] * n.area;
+  }
+  Vec3 c;
+  for (int k = 0; k < 3; ++k)
+    if (den[k] > 1e-12 * total[k] && total[k] > 0) c[k] = std::max(-0.5, num[k] / den[k]);
+  double largest = 0;
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    HNode& n = nodes[k];
+    if (!is_leaf_element(n)) continue;
+    const Vec3 next = n.B + mul(c, v[k]);
+    const double scale = std::max(max_component(next), floor);
+    if (scale > 0) largest = std::max(largest, max_component(abs3(next - n.B)) / scale);
+    n.B = next;
+  }
+  pull_up_radiosity(h);
+  return largest;
+}
+
+}  // namespace walkrad

@@ -1,0 +1,99 @@
+// The solve's sweeps: gather along the links, push-pull radiosity down and up the hierarchy, shoot
+// and push-pull importance (Hanrahan, Salzman & Aupperle 1991; importance: Smits, Arvo & Salesin 1992).
+#include "solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "walkrad/hierarchical/link_transport.h"
+
+namespace walkrad::hierarchical_detail {
+
+double Solver::solve_sweep(IterationStats& is) {
+  std::vector<HNode>& nodes = h_.nodes();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      if (!s_.gauss_seidel || nodes[i].cluster) gather(nodes[i]);
+  });
+  change_ = 0;
+  is.emitted = is.absorbed = is.residual = Vec3{};
+  is.clamped_leaves = 0;
+  push_pull(h_.root(), Vec3{}, 0.0, is);
+  if (importance_) {
+    for (HNode& n : nodes) n.Ig = 0;
+    for (const HNode& n : nodes)  // sequential: sums in a fixed order
+      for (const Link& l : n.links) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
+    push_pull_importance(h_.root(), 0.0);
+  }
+  return change_;
+}
+
+void Solver::gather(HNode& n) {
+  Vec3 H;
+  double f = 0;
+  for (const Link& l : n.links) {
+    H += (s_.indirect ? h_[l.source].Bt : h_[l.source].emission) * l.F;
+    f += l.F;
+  }
+  n.H = H;
+  n.Fsum = f;
+}
+
+void Solver::gather_subtree(uint32_t i) {
+  gather(h_[i]);
+  for (uint32_t k = 0; k < h_[i].child_count; ++k) gather_subtree(h_.child(h_[i], k));
+}
+
+Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, IterationStats& is) {
+  if (s_.gauss_seidel && !h_[i].cluster && h_[i].depth == 0) gather_subtree(i);
+  HNode& n = h_[i];
+  Vec3 H = n.H + down;
+  const double row_sum = n.Fsum + down_sum;
+  if (n.child_count == 0) {
+    bool clamped = false;
+    H = leaf_irradiance(n, H, row_sum, &clamped);
+    if (clamped) ++is.clamped_leaves;
+    h_[i].Hl = H;
+    const Vec3 tau = transmittance(n);
+    const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
+    const Vec3 b = n.emission + mul(n.rho, H + n.D) + through;
+    const double scale = std::max(max_component(b), change_floor_);
+    if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
+    // The residual of the leaf's equation before this update: |E + ρH − B| A.
+    const Vec3 r = b - n.B;
+    is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;
+    n.B = b;
+    n.Bt = b * n.send;
+    is.emitted += (n.emission + n.D) * n.area;
+    is.absorbed += mul(Vec3(1, 1, 1) - n.rho - tau, H + n.D) * n.area;
+    return b;
+  }
+  Vec3 sum, sent;
+  const uint32_t count = n.child_count;
+  const double area = n.area;
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t c = h_.child(h_[i], k);
+    sum += push_pull(c, H, row_sum, is) * h_[c].area;
+    sent += h_[c].Bt * h_[c].area;
+  }
+  h_[i].B = area > 0 ? sum / area : Vec3{};
+  h_[i].Bt = area > 0 ? sent / area : Vec3{};
+  return h_[i].B;
+}
+
+double Solver::push_pull_importance(uint32_t i, double down) {
+  const double total = h_[i].Ig + down;
+  if (h_[i].child_count == 0) return h_[i].I = h_[i].R + total;
+  double sum = 0;
+  const double area = h_[i].area;
+  for (uint32_t k = 0; k < h_[i].child_count; ++k) {
+    const uint32_t c = h_.child(h_[i], k);
+    sum += push_pull_importance(c, area > 0 ? total * h_[c].area / area : 0.0);
+  }
+  return h_[i].I = sum;
+}
+
+}  // namespace walkrad::hierarchical_detail

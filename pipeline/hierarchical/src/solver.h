@@ -1,0 +1,169 @@
+// The hierarchical solver's state and steps (hierarchical_solver.h), private to this stage. One class,
+// its methods in a file per concept: the rounds (hierarchical_solver.cpp), the refinement of links
+// (link_refinement.cpp), their form factors and visibility (link_evaluation.cpp), and the sweeps that
+// gather and push-pull radiosity and importance (solve_sweep.cpp).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "walkrad/formfactor/punctual_lights.h"
+#include "walkrad/hierarchical/hierarchical_solver.h"
+#include "walkrad/hierarchical/transmission.h"
+#include "walkrad/visibility/shaft.h"
+
+namespace walkrad::hierarchical_detail {
+
+// A link found by the refinement, waiting for its form factor (evaluated in parallel).
+struct Pending {
+  uint32_t receiver, source;
+  bool need_rays;   // Embree rays (against the solid scene when volume)
+  int samples = 0;  // rays (or Monte Carlo samples) for this link
+  bool volume = false;  // volume clusters in the shaft stand in for their polygons (volume_visibility.h)
+  double F = 0, spread = 0;
+  uint64_t rays = 0, grid_segments = 0;
+};
+
+class Solver {
+ public:
+  Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats);
+
+  // Elements split where the punctual lights' irradiance varies more than ε allows, level by level
+  // (the irradiance of each level's new elements computed in parallel; the splits in a fixed order).
+  void refine_for_lights();
+
+  // Clusters that hold a transmitting polygon or its twin (transmission.h). A cluster link sends the
+  // area mean of its surfaces' radiosity and pushes what it receives evenly onto them, but the two
+  // sides of a lampshade see different worlds: the bright inside, hidden from the room, and the room.
+  // With the twins in a cluster, the lit outside of a shade gathered a row sum of 0.24, and a closed
+  // room lost light (the transmission test's room absorbed 0.9958 of the emitted power; 1.000000 now;
+  // the lamp room, whose leak lies elsewhere, absorbs 0.9965 without this and 0.9957 with it: see
+  // docs/numerics.md). Links never end at such a cluster: they go down to the transmitting polygons'
+  // own elements (a lampshade's few polygons; many transmitting polygons make many links).
+  void mark_two_sided_clusters();
+  bool two_sided(uint32_t i) const { return i < two_sided_.size() && two_sided_[i]; }
+
+  // Rounds of refine → evaluate → solve. A round that adds no link solves to convergence; the
+  // search stops only when a refinement pass over the converged solution adds none either (links
+  // kept while B was still growing are checked again against the final B).
+  void run(const std::function<void(const IterationStats&)>& progress);
+
+  // A closed scene: every leaf receives a row sum of 1 and sends all of its power (link_transport.h).
+  void balance_closed();
+
+  void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress);
+
+ private:
+  double weight(const HNode& n) const { return importance_ ? n.I : n.area; }
+
+  // τ of an element's material when transmission is simulated (else 0).
+  Vec3 transmittance(const HNode& n) const {
+    if (!s_.twins || n.cluster || (*s_.twins)[n.polygon] == kNoTwin) return {};
+    return h_.scene().materials[h_.scene().polygons[n.polygon].material].transmittance;
+  }
+  Vec3 twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
+  const std::vector<PunctualLight>* lights() const { return s_.lights && !s_.lights->empty() ? s_.lights : nullptr; }
+
+  // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
+  // parallel; returns each one's spread.
+  std::vector<double> direct_for(const std::vector<uint32_t>& elements);
+
+  void compute_missing_direct();
+
+  bool splittable(uint32_t i) const;
+
+  // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
+  // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
+  double estimate(const HNode& ri, const HNode& sj) const;
+
+  double oracle(const HNode& ri, const HNode& sj) const;
+
+  // Refines the interaction of receiver i with source j: links it, drops it, or splits an end and
+  // recurses. parent: the candidate occluders of the enclosing link's shaft (null: from the tree).
+  void refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent);
+
+  // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
+  // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
+  // rule accepts some volumes but another volume's polygons must block exactly is evaluated exactly
+  // throughout: the grid holds every volume, the solid scene none.
+  std::vector<uint32_t> occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
+                                  const std::vector<uint32_t>* parent) const;
+
+  // Later rounds: links whose oracle now exceeds ε (B and I have changed) are split.
+  void refine_existing();
+
+  // Form factors of the new links, in parallel: each link draws from its own random stream.
+  void evaluate_pending(IterationStats& is);
+
+  // What of each segment arrives: 0 or 1 from Embree (against the solid scene when the link sees
+  // through volumes), times the transmittance through the extinction grid.
+  void visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const;
+
+  void evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
+                std::vector<double>& weights) const;
+
+  static constexpr uint64_t kExactClusterPairs = 64;
+
+  // A Monte Carlo sample of a link with a cluster receiver: which child of the receiver its point
+  // lies in, its kernel (0 when the two points do not face each other), its ray (−1: none).
+  struct ClusterSample {
+    uint32_t child;
+    double value;
+    int32_t segment;
+  };
+
+  // What pushing a cluster link's transfer uniformly to the receiver's children misplaces: the mean
+  // over children (by their share of samples, i.e. of area) of how far each child's own estimate lies
+  // from the link's, beyond twice its statistical error (so that a uniformly lit cluster is not split
+  // for noise). A child facing away or hidden behind others (a closed room's inner walls) gets nothing
+  // of what the others get: the link's receiver is split where that matters (refine_existing).
+  static double misplaced(const HNode& receiver, const std::vector<ClusterSample>& samples, const std::vector<double>& visible);
+
+  // The form factor kernel between two surface points, cos θ cos θ' / r² (without the constant).
+  static double point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny);
+
+  uint64_t polygon_pairs(const HNode& a, const HNode& b) const;
+
+  // (1/A_i) Σ_{k ∈ i} Σ_{m ∈ j} A_k F_km over the polygons (or the element) of each end.
+  double exact_unoccluded(const HNode& ri, const HNode& sj) const;
+
+  // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance. Jacobi
+  // gathers every node from the previous sweep's radiosity; Gauss-Seidel gathers each input polygon's
+  // quadtree just before pushing it down, so it sees what the polygons before it got this sweep
+  // (clusters still gather first). Returns the largest relative change of a leaf's radiosity.
+  double solve_sweep(IterationStats& is);
+
+  // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well
+  // above 1 receives more than any enclosure could send it: coincident surfaces in the input (two
+  // lamp shades in one place: S = 3.5 in the MGF hospital) create power there and make the iteration
+  // diverge. Its irradiance is scaled back to a row sum of 1. Row sums slightly above 1 are left: near
+  // corners pushed averages overstate some leaves and understate others (up to 1.24 in the furnace),
+  // and clamping only one side would lose power.
+  void gather(HNode& n);
+
+  void gather_subtree(uint32_t i);
+
+  Vec3 push_pull(uint32_t i, const Vec3& down, double down_sum, IterationStats& is);
+
+  double push_pull_importance(uint32_t i, double down);
+
+  // What the final links still carry above nothing: B·W·ρ·F, the error the user sees as coarse.
+  void measure_left_error();
+
+  Hierarchy& h_;
+  const RayScene& rays_;
+  const HierarchicalSettings& s_;
+  HierarchicalStats& stats_;
+  double eps_ = 0, min_area_ = 0, change_ = 0, change_floor_ = 0;
+  std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
+  std::vector<double> light_spread_;      // from the constructor to refine_for_lights
+  bool importance_ = false;
+  std::vector<Pending> pending_;
+  static thread_local std::vector<double> kernel_scratch_;
+  static thread_local std::vector<ClusterSample> cluster_scratch_;
+  std::vector<uint8_t> two_sided_;  // by node: a cluster holding a transmitting polygon or a twin
+  static thread_local std::vector<uint8_t> blocked_scratch_;
+};
+
+}  // namespace walkrad::hierarchical_detail

@@ -1,0 +1,45 @@
+// The bake's surface as a crack-free Gouraud mesh (algorithms.md §8; Baum, Mann, Smith & Winget 1991,
+// "Making radiosity usable": T-vertices and anchoring). The faces are the solution's leaves
+// (hierarchy leaves or uniform elements). Their corners are welded where positions coincide; where a
+// face's edge passes through another face's corner (a finer neighbour's T-vertex, within this polygon
+// or across polygons that share the edge), that vertex is inserted into the edge and the face is
+// fanned from its centre. So no output edge has a vertex inside it: watertight, no cracks, no pixel
+// dropouts, and both sides of a shared edge interpolate between the same two vertices.
+//
+// A vertex's radiosity is the area-weighted average of the faces that have it on their boundary,
+// within one smoothing group: polygons of one material, facing the same way, that touch (so a floor
+// cut into several polygons is smooth across its cuts). At a crease or a material boundary each side
+// keeps its own vertices: radiosity is discontinuous there physically.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "walkrad/formats/scene.h"
+#include "walkrad/formats/chunk.h"
+
+namespace walkrad {
+
+// A bake's whole surface before it is cut into chunks: the mesh, and per triangle its polygon.
+struct SurfaceMesh {
+  ChunkMesh mesh;
+  std::vector<uint32_t> triangle_polygon;
+};
+
+// Appends one vertex: position, normal, radiosity B and its display colour B/π × exposure clamped to
+// [0, 1] (glTF's range for COLOR_0). Shared by every mesher.
+void append_vertex(ChunkMesh& mesh, const Vec3& position, const Vec3& normal, const Vec3& radiosity, double exposure);
+
+struct MeshFace {
+  Polygon shape;  // corners counter-clockwise seen from the front; shape.material is the face's material
+  Vec3 normal;    // unit
+  Vec3 radiosity; // B, W/m²
+  double area = 0;
+  uint32_t polygon = 0;  // the (contact-split) scene polygon it lies on
+};
+
+// exposure: display colour = B/π × exposure, clamped to [0, 1]. Deterministic: the output depends only
+// on the faces and their order.
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure);
+
+}  // namespace walkrad

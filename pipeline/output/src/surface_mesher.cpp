@@ -1,0 +1,209 @@
+#include "walkrad/output/surface_mesher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace walkrad {
+
+void append_vertex(ChunkMesh& mesh, const Vec3& position, const Vec3& normal, const Vec3& radiosity, double exposure) {
+  const Vec3 colour = radiosity * (exposure / kPi);
+  for (int k = 0; k < 3; ++k) {
+    mesh.positions.push_back(float(position[k]));
+    mesh.normals.push_back(float(normal[k]));
+    mesh.radiosity.push_back(float(radiosity[k]));
+    mesh.colors.push_back(float(std::clamp(colour[k], 0.0, 1.0)));
+  }
+}
+
+namespace {
+
+struct CellKey {
+  int64_t x, y, z;
+  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct CellHash {
+  size_t operator()(const CellKey& k) const {
+    return size_t((uint64_t(k.x) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(k.y) * 0xC2B2AE3D27D4EB4Full) ^ (uint64_t(k.z) * 0x165667B19E3779F9ull));
+  }
+};
+
+// Points in cells of a uniform grid: a point's neighbours within the cell size are in the 27 cells
+// around its own.
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  CellKey key(const Vec3& p) const {
+    return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)), int64_t(std::floor(p.z / cell_))};
+  }
+  void add(const Vec3& p, uint32_t id) { cells_[key(p)].push_back(id); }
+  template <class F>
+  void around(const Vec3& p, F&& visit) const {
+    const CellKey k = key(p);
+    for (int64_t dz = -1; dz <= 1; ++dz)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dx = -1; dx <= 1; ++dx) {
+          const auto it = cells_.find({k.x + dx, k.y + dy, k.z + dz});
+          if (it != cells_.end())
+            for (uint32_t id : it->second) visit(id);
+        }
+  }
+
+ private:
+  double cell_;
+  std::unordered_map<CellKey, std::vector<uint32_t>, CellHash> cells_;
+};
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure) {
+  SurfaceMesh surface;
+  if (faces.empty()) return surface;
+  Bounds bounds;
+  double edge_sum = 0;
+  uint32_t polygons = 0;
+  for (const MeshFace& f : faces) {
+    for (int k = 0; k < f.shape.count; ++k) {
+      bounds.extend(f.shape.v[k]);
+      edge_sum += length(f.shape.v[(k + 1) % f.shape.count] - f.shape.v[k]);
+    }
+    polygons = std::max(polygons, f.polygon + 1);
+  }
+  // Positions closer than weld_tol are one vertex; a vertex closer than weld_tol to an edge lies on it.
+  const double weld_tol = 1e-6 * std::max(length(bounds.diagonal()), 1e-30);
+
+  // 1. Weld the corners (first come, first numbered: deterministic).
+  std::vector<Vec3> points;
+  PointGrid weld(weld_tol);
+  auto weld_point = [&](const Vec3& p) {
+    uint32_t found = UINT32_MAX;
+    weld.around(p, [&](uint32_t id) {
+      if (found == UINT32_MAX && length(points[id] - p) <= weld_tol) found = id;
+    });
+    if (found != UINT32_MAX) return found;
+    points.push_back(p);
+    weld.add(p, uint32_t(points.size() - 1));
+    return uint32_t(points.size() - 1);
+  };
+  std::vector<std::array<uint32_t, 4>> corner(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (int k = 0; k < faces[i].shape.count; ++k) corner[i][size_t(k)] = weld_point(faces[i].shape.v[k]);
+
+  // 2. Each face's boundary: its corners with the vertices lying inside its edges, in order. Edges are
+  // walked in steps of the grid's cell, visiting the cells around each step.
+  const double cell = std::max(edge_sum / double(std::max<size_t>(faces.size(), 1)) / 4.0, 4 * weld_tol);
+  PointGrid grid(cell);
+  for (uint32_t id = 0; id < points.size(); ++id) grid.add(points[id], id);
+  std::vector<uint32_t> boundary, boundary_begin{0};
+  std::vector<uint32_t> candidates;
+  std::vector<std::pair<double, uint32_t>> on_edge;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const int n = faces[i].shape.count;
+    for (int k = 0; k < n; ++k) {
+      const uint32_t a = corner[i][size_t(k)], b = corner[i][size_t((k + 1) % n)];
+      const Vec3 p = points[a], d = points[b] - points[a];
+      const double len2 = dot(d, d), len = std::sqrt(len2);
+      const int steps = int(std::ceil(len / cell));
+      candidates.clear();
+      for (int s = 0; s <= steps; ++s)
+        grid.around(p + d * (double(s) / std::max(steps, 1)), [&](uint32_t id) { candidates.push_back(id); });
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      on_edge.clear();
+      for (uint32_t id : candidates) {
+        if (id == a || id == b) continue;
+        const double t = dot(points[id] - p, d) / len2;
+        if (t * len <= weld_tol || (1 - t) * len <= weld_tol) continue;
+        if (length(p + d * t - points[id]) <= weld_tol) on_edge.push_back({t, id});
+      }
+      std::sort(on_edge.begin(), on_edge.end());
+      boundary.push_back(a);
+      for (const auto& [t, id] : on_edge) boundary.push_back(id);
+    }
+    boundary_begin.push_back(uint32_t(boundary.size()));
+  }
+
+  // 3. Smoothing groups: polygons of one material facing the same way that share a boundary vertex.
+  std::vector<Vec3> polygon_normal(polygons);
+  std::vector<uint32_t> polygon_material(polygons, 0), group(polygons);
+  std::iota(group.begin(), group.end(), 0u);
+  for (const MeshFace& f : faces) {
+    polygon_normal[f.polygon] = f.normal;
+    polygon_material[f.polygon] = f.shape.material;
+  }
+  {
+    std::vector<std::pair<uint32_t, uint32_t>> touch;  // (vertex, polygon)
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) touch.push_back({boundary[j], faces[i].polygon});
+    std::sort(touch.begin(), touch.end());
+    touch.erase(std::unique(touch.begin(), touch.end()), touch.end());
+    for (size_t s = 0; s < touch.size();) {
+      size_t e = s;
+      while (e < touch.size() && touch[e].first == touch[s].first) ++e;
+      for (size_t x = s; x < e; ++x)
+        for (size_t y = x + 1; y < e; ++y) {
+          const uint32_t px = touch[x].second, py = touch[y].second;
+          if (polygon_material[px] == polygon_material[py] && dot(polygon_normal[px], polygon_normal[py]) > 1 - 1e-9)
+            group[find_root(group, px)] = find_root(group, py);
+        }
+      s = e;
+    }
+    for (uint32_t pgn = 0; pgn < polygons; ++pgn) group[pgn] = find_root(group, pgn);
+  }
+
+  // 4. Vertex radiosity: area-weighted over the faces of one group that have the vertex on their boundary.
+  std::unordered_map<uint64_t, uint32_t> slot;  // (point, group) → accumulator
+  std::vector<Vec3> sum;
+  std::vector<double> weight;
+  std::vector<uint32_t> slot_point, face_slots(boundary.size());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const uint64_t g = group[faces[i].polygon];
+    for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
+      const auto [it, fresh] = slot.try_emplace(uint64_t(boundary[j]) * polygons + g, uint32_t(sum.size()));
+      if (fresh) {
+        sum.push_back(Vec3());
+        weight.push_back(0.0);
+        slot_point.push_back(boundary[j]);
+      }
+      face_slots[j] = it->second;
+      sum[it->second] += faces[i].radiosity * faces[i].area;
+      weight[it->second] += faces[i].area;
+    }
+  }
+
+  // 5. Output: vertices in order of first use, then each face's triangles (a fan from its centre
+  // when T-vertices lie on its edges).
+  ChunkMesh& mesh = surface.mesh;
+  std::vector<uint32_t> out_index(sum.size(), UINT32_MAX);
+  auto vertex = [&](uint32_t s, const Vec3& normal) {
+    if (out_index[s] == UINT32_MAX) {
+      out_index[s] = uint32_t(mesh.vertex_count());
+      append_vertex(mesh, points[slot_point[s]], normal, sum[s] / weight[s], exposure);
+    }
+    return out_index[s];
+  };
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const MeshFace& f = faces[i];
+    const uint32_t begin = boundary_begin[i], count = boundary_begin[i + 1] - begin;
+    std::vector<uint32_t> v(count);
+    for (uint32_t j = 0; j < count; ++j) v[j] = vertex(face_slots[begin + j], f.normal);
+    if (count == uint32_t(f.shape.count)) {
+      mesh.indices.insert(mesh.indices.end(), {v[0], v[1], v[2]});
+      if (count == 4) mesh.indices.insert(mesh.indices.end(), {v[0], v[2], v[3]});
+    } else {
+      const uint32_t c = uint32_t(mesh.vertex_count());
+      append_vertex(mesh, polygon_centroid(f.shape), f.normal, f.radiosity, exposure);
+      for (uint32_t j = 0; j < count; ++j) mesh.indices.insert(mesh.indices.end(), {c, v[j], v[(j + 1) % count]});
+    }
+    surface.triangle_polygon.resize(mesh.triangle_count(), f.polygon);
+  }
+  return surface;
+}
+
+}  // namespace walkrad

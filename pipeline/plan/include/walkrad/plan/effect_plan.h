@@ -1,0 +1,73 @@
+// The effect plan (issue 10): before solving, decide from the scene and the walkthrough which light
+// transport a bake simulates, and say why, so that a bake pays only for effects the scene has:
+//   indirect    — only if a reflecting surface (ρ > 0) faces an emitter; otherwise B = E + one gather;
+//   visibility  — only if something can occlude: never in a convex enclosure (every polygon on or in
+//                 front of every other polygon's plane, so no segment between two of them crosses a third);
+//   importance  — only with viewpoints (and not --view-independent);
+//   clusters    — the hierarchical method's cluster links (always with it; none in the classic method);
+//   closure     — a closed scene (no ray from any surface escapes: every form factor row sums to 1),
+//                 where the hierarchical method balances each leaf's gather and send (link_transport.h);
+//   punctual    — point and spot lights (glTF KHR_lights_punctual), shot straight to the elements
+//                 (punctual_lights.h); off ignores them;
+//   transmission — diffuse transmission where a material transmits (transmission.h; hierarchical
+//                 method only);
+//   textures    — reflectance and emission textures sampled per element where polygons have texture
+//                 coordinates (texture_sampling.h); off: each material's average;
+//   volumes     — volumetric visibility through clusters of many small objects (volume_clusters.h,
+//                 volume_visibility.h; hierarchical method, with visibility): only if the scene has such
+//                 clusters; off: exact rays everywhere.
+// Indirect light and visibility take punctual lights into account (a reflector in front of one; a
+// light outside a convex enclosure).
+// Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
+// and manifest.json and report.json keep it.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "walkrad/formats/scene.h"
+#include "walkrad/visibility/ray_scene.h"
+#include "walkrad/visibility/volume_clusters.h"
+
+namespace walkrad {
+
+struct Effect {
+  bool on = true;
+  std::string reason;
+  bool forced = false;  // by an override
+};
+
+struct EffectPlan {
+  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes;
+  nlohmann::json to_json() const;
+  std::string explain() const;  // one line per effect
+};
+
+// overrides: effect name → "on" or "off" (InputError naming --effect for an unknown name or value).
+// volumes: the scene's volume clusters (null: none looked for).
+EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
+                        bool view_independent, const std::string& method,
+                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr);
+
+// Applies an --effect override (NAME → "on" or "off", already checked) to e: forced, with the analysis's
+// reason kept.
+void apply_override(Effect& e, const std::string& name, const std::map<std::string, std::string>& overrides);
+
+// Whether every polygon lies on or in front of every other polygon's plane (tolerance relative to the
+// scene's size): then nothing can stand between two surfaces.
+bool is_convex_enclosure(const Scene& scene);
+
+// Whether no ray leaves the scene: cosine-distributed rays from stratified points of every polygon
+// (about 65,536 in all, at least one a polygon), each must hit a surface, but for rays from points
+// pressed against a polygon facing the other way in the same plane (a table's bottom on the floor:
+// counted in pressed_samples), which see nothing. Deterministic.
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples);
+
+// The transmission entry: on when a polygon's material transmits and the method is hierarchical;
+// overrides as plan_effects' ("transmission" → "on" or "off").
+Effect plan_transmission(const Scene& scene, const std::string& method, const std::map<std::string, std::string>& overrides);
+
+}  // namespace walkrad

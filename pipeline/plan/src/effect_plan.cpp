@@ -1,0 +1,257 @@
+#include "walkrad/plan/effect_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "walkrad/formats/error.h"
+#include "walkrad/core/sampling.h"
+#include "walkrad/scene/texture_sampling.h"
+
+namespace walkrad {
+
+namespace {
+
+// Whether some vertex of b lies strictly in front of a's plane.
+bool in_front(const Polygon& a, const Vec3& normal, const Polygon& b, double tol) {
+  for (int k = 0; k < b.count; ++k)
+    if (dot(b.v[k] - a.v[0], normal) > tol) return true;
+  return false;
+}
+
+// Does a polygon with ρ > 0 face an emitter (each in front of the other's plane) or a punctual light?
+bool reflector_faces_light(const Scene& scene, double tol) {
+  std::vector<size_t> emitters;
+  for (size_t i = 0; i < scene.polygons.size(); ++i)
+    if (scene.materials[scene.polygons[i].material].emits()) emitters.push_back(i);
+  for (size_t i = 0; i < scene.polygons.size(); ++i) {
+    const Polygon& p = scene.polygons[i];
+    if (luminance(scene.materials[p.material].reflectance) <= 0) continue;
+    const Vec3 n = polygon_normal(p);
+    for (const PunctualLight& l : scene.lights)
+      if (dot(l.position - p.v[0], n) > tol) return true;
+    for (size_t e : emitters) {
+      const Polygon& l = scene.polygons[e];
+      if (e != i && in_front(p, n, l, tol) && in_front(l, polygon_normal(l), p, tol)) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void apply_override(Effect& e, const std::string& name, const std::map<std::string, std::string>& overrides) {
+  const auto it = overrides.find(name);
+  if (it == overrides.end()) return;
+  e.on = it->second == "on";
+  e.forced = true;
+  e.reason = "forced " + it->second + " (--effect " + name + "=" + it->second + "); the analysis said: " + e.reason;
+}
+
+namespace {
+
+nlohmann::json effect_json(const Effect& e) { return {{"on", e.on}, {"reason", e.reason}, {"forced", e.forced}}; }
+
+}  // namespace
+
+bool is_convex_enclosure(const Scene& scene) {
+  const double tol = 1e-9 * std::max(length(scene.bounds().diagonal()), 1e-30);
+  for (const Polygon& a : scene.polygons) {
+    const Vec3 n = polygon_normal(a);
+    for (const Polygon& b : scene.polygons)
+      for (int k = 0; k < b.count; ++k)
+        if (dot(b.v[k] - a.v[0], n) < -tol) return false;  // behind a: a could hide it from something
+  }
+  return true;
+}
+
+namespace {
+
+// Whether point p of polygon `self` (normal n) lies on a polygon that faces the other way in the same
+// plane: the two are pressed together (a table's bottom on the floor) and p sees nothing at all, so a
+// ray from it proves nothing about openings. Polygons are convex (contact_split.h keeps them so).
+// hint: the polygon that matched last (a pressed face's samples all lie on the same one).
+bool pressed(const Scene& scene, size_t self, const Vec3& p, const Vec3& n, double tol, size_t& hint) {
+  const auto covers = [&](size_t j) {
+    const Polygon& q = scene.polygons[j];
+    const Vec3 m = polygon_normal(q);
+    if (j == self || dot(m, n) > -1 + 1e-9 || std::fabs(dot(p - q.v[0], m)) > tol) return false;
+    for (int k = 0; k < q.count; ++k) {
+      const Vec3 a = q.v[k], e = q.v[(k + 1) % q.count] - a;
+      const double len = length(e);
+      if (len > 0 && dot(cross(e, p - a), m) < -tol * len) return false;
+    }
+    return true;
+  };
+  if (hint < scene.polygons.size() && covers(hint)) return true;
+  for (size_t j = 0; j < scene.polygons.size(); ++j)
+    if (covers(j)) {
+      hint = j;
+      return true;
+    }
+  return false;
+}
+
+}  // namespace
+
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples) {
+  const size_t n = scene.polygons.size();
+  const double tol = 1e-6 * length(scene.bounds().diagonal());  // contact_split's default
+  size_t hint = SIZE_MAX;
+  const size_t per = std::clamp<size_t>(65536 / std::max<size_t>(n, 1), 1, 64);
+  for (size_t i = 0; i < n; ++i) {
+    const Polygon& p = scene.polygons[i];
+    const Vec3 normal = polygon_normal(p);
+    // A frame around the normal for cosine-weighted directions.
+    const Vec3 t = normalize(cross(std::fabs(normal.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), normal));
+    const Vec3 b = cross(normal, t);
+    Rng rng(i, 0x636c6f73ull);  // "clos"
+    for (size_t k = 0; k < per; ++k) {
+      const Vec3 origin = sample_polygon(p, rng.uniform(), rng.uniform()) + normal * rays.offset();
+      const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
+      const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - r * r));
+      ++rays_cast;
+      if (rays.intersect(origin, d).hit) continue;
+      if (!pressed(scene, i, origin - normal * rays.offset(), normal, tol, hint)) return false;
+      ++pressed_samples;
+    }
+  }
+  return n > 0;
+}
+
+EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
+                        bool view_independent, const std::string& method,
+                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes) {
+  for (const auto& [name, value] : overrides) {
+    if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
+        name != "punctual" && name != "transmission" && name != "textures" && name != "volumes")
+      throw InputError("--effect", name,
+                       "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission, "
+                       "textures, volumes)",
+                       kExitBadArguments);
+    if (value != "on" && value != "off")
+      throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
+  }
+  const double tol = 1e-9 * std::max(length(scene.bounds().diagonal()), 1e-30);
+  EffectPlan plan;
+  plan.indirect.on = reflector_faces_light(scene, tol);
+  plan.indirect.reason = plan.indirect.on ? "surfaces with reflectance > 0 face an emitter"
+                                          : "no surface that light reaches reflects (ρ = 0): direct light only, B = E + one gather";
+  // A light outside the enclosure (behind a wall's plane) is hidden from the opposite walls by it.
+  bool lights_inside = true;
+  for (const PunctualLight& l : scene.lights)
+    for (const Polygon& p : scene.polygons) lights_inside = lights_inside && dot(l.position - p.v[0], polygon_normal(p)) >= -tol;
+  const bool convex = is_convex_enclosure(scene);  // O(n²): once
+  plan.visibility.on = !convex || !lights_inside;
+  plan.visibility.reason = !convex ? "some polygon lies behind another's plane: occlusion is possible"
+                           : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
+                                                : "a convex enclosure with nothing inside: no occlusion possible, no rays";
+  size_t points = 0, spots = 0;
+  for (const PunctualLight& l : scene.lights) (l.type == PunctualLight::Type::spot ? spots : points) += 1;
+  plan.punctual.on = !scene.lights.empty();
+  plan.punctual.reason = plan.punctual.on ? std::to_string(points) + " point and " + std::to_string(spots) +
+                                                " spot lights (KHR_lights_punctual): shot straight to the elements, a shadow ray per sample"
+                                          : "no punctual lights";
+  plan.importance.on = !views.empty() && !view_independent;
+  plan.importance.reason = views.empty() ? "no viewpoints: view-independent refinement (BF oracle)"
+                           : view_independent ? "--view-independent: viewpoints used for exposure only"
+                                              : std::to_string(views.size()) + " viewpoints: refinement where they look";
+  plan.clusters.on = method == "hierarchical";
+  plan.clusters.reason = plan.clusters.on ? "hierarchical method: groups of polygons exchange light through cluster links"
+                                          : "classic method: element to element only";
+  uint64_t closure_rays = 0, pressed_samples = 0;
+  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples);
+  plan.closure.on = closed;
+  const std::string pressed_note =
+      pressed_samples > 0 ? ", but for " + std::to_string(pressed_samples) + " from faces pressed against others" : "";
+  plan.closure.reason = method != "hierarchical" ? "classic method: its uniform elements' row sums need no correction"
+                        : closed ? "no ray from any surface escapes (" + std::to_string(closure_rays) + " rays" +
+                                       pressed_note + "): each leaf's gather and send are balanced (link_transport.h)"
+                                 : "rays escape the scene: row sums are left as computed";
+  apply_override(plan.indirect, "indirect", overrides);
+  apply_override(plan.closure, "closure", overrides);
+  apply_override(plan.visibility, "visibility", overrides);
+  apply_override(plan.importance, "importance", overrides);
+  apply_override(plan.clusters, "clusters", overrides);
+  apply_override(plan.punctual, "punctual", overrides);
+  plan.transmission = plan_transmission(scene, method, overrides);
+  plan.textures.on = has_textures(scene);
+  plan.textures.reason = plan.textures.on ? "textured materials with texture coordinates: sampled per element"
+                                          : "no textured surface with texture coordinates: each material's average";
+  apply_override(plan.textures, "textures", overrides);
+  if (plan.textures.on && !has_textures(scene))
+    throw InputError("--effect", "textures", "the scene has no textured surface with texture coordinates", kExitBadArguments);
+  const bool has_volumes = volumes && !volumes->empty();
+  plan.volumes.on = has_volumes && plan.visibility.on && method == "hierarchical";
+  if (method != "hierarchical") {
+    plan.volumes.reason = "classic method: exact rays only";
+  } else if (!has_volumes) {
+    plan.volumes.reason = "no cluster of many small separate objects spread as if at random (a volume): exact rays only";
+  } else {
+    const size_t n = scene.polygons.size();
+    plan.volumes.reason = std::to_string(volumes->boxes.size()) + " volume clusters hold " +
+                          std::to_string(volumes->volume_polygons) + " of " + std::to_string(n) +
+                          " polygons: links see through them where their objects are smaller than the penumbra";
+    if (!plan.visibility.on) plan.volumes.reason += "; but no occlusion is possible here";
+  }
+  apply_override(plan.volumes, "volumes", overrides);
+  if (plan.volumes.on && (!has_volumes || method != "hierarchical" || !plan.visibility.on))
+    throw InputError("--effect", "volumes",
+                     method != "hierarchical" ? "volumetric visibility exists only in the hierarchical method"
+                     : !has_volumes           ? "the scene has no volume cluster"
+                                              : "visibility is off: there is nothing to see through",
+                     kExitBadArguments);
+  if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {
+    plan.indirect.on = true;
+    plan.indirect.reason = "light passes through transmitting surfaces: it needs the gather";
+  }
+  if (plan.punctual.on && scene.lights.empty())
+    throw InputError("--effect", "punctual", "the scene has no punctual lights", kExitBadArguments);
+  if (plan.importance.on && views.empty())
+    throw InputError("--effect", "importance", "importance needs viewpoints (--views or glTF cameras)", kExitBadArguments);
+  if (plan.clusters.on && method != "hierarchical")
+    throw InputError("--effect", "clusters", "clusters exist only in the hierarchical method", kExitBadArguments);
+  if (!plan.clusters.on && method == "hierarchical")
+    throw InputError("--effect", "clusters", "the hierarchical method cannot run without clusters (use --method classic)",
+                     kExitBadArguments);
+  return plan;
+}
+
+nlohmann::json EffectPlan::to_json() const {
+  return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
+          {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
+          {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)},
+          {"textures", effect_json(textures)}, {"volumes", effect_json(volumes)}};
+}
+
+std::string EffectPlan::explain() const {
+  std::string out;
+  auto line = [&](const char* name, const Effect& e) { out += std::string(name) + ": " + (e.on ? "on" : "off") + " — " + e.reason + "\n"; };
+  line("indirect", indirect);
+  line("visibility", visibility);
+  line("importance", importance);
+  line("clusters", clusters);
+  line("closure", closure);
+  line("punctual", punctual);
+  line("transmission", transmission);
+  line("textures", textures);
+  line("volumes", volumes);
+  return out;
+}
+
+Effect plan_transmission(const Scene& scene, const std::string& method, const std::map<std::string, std::string>& overrides) {
+  size_t count = 0;
+  for (const Polygon& p : scene.polygons) count += scene.materials[p.material].transmits() ? 1 : 0;
+  Effect e;
+  e.on = count > 0 && method == "hierarchical";
+  e.reason = count == 0 ? "no material transmits"
+             : method != "hierarchical"
+                 ? std::to_string(count) + " polygons transmit, but the classic method does not simulate transmission (use the hierarchical one)"
+                 : std::to_string(count) + " polygons transmit (diffuse transmission): each gets a back-facing twin that passes light through";
+  apply_override(e, "transmission", overrides);
+  if (e.on && (count == 0 || method != "hierarchical"))
+    throw InputError("--effect", "transmission", count == 0 ? "no material transmits" : "the classic method does not simulate transmission",
+                     kExitBadArguments);
+  return e;
+}
+
+}  // namespace walkrad

@@ -1,0 +1,198 @@
+// The effect plan (issue 10): what a scene does not call for is not simulated, the result is the same
+// as with the effect forced on, and the work counters prove what ran.
+#include "walkrad/plan/effect_plan.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "walkrad/testing/temp_dir_test.h"
+#include "walkrad/testing/test_scenes.h"
+#include "walkrad/formats/bake_folder.h"
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/scene_writer.h"
+#include "walkrad/bake/bake.h"
+#include "walkrad/scene/cluster_tree.h"
+#include "walkrad/visibility/ray_scene.h"
+
+namespace walkrad {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A closed unit box, reflectance rho, whose top face (z = 1) is a light.
+Scene lit_box(double rho) {
+  Scene s = test::closed_box(1.0, Vec3(rho, rho, rho), Vec3(0, 0, 0));
+  s.materials.push_back({"light", Vec3(0, 0, 0), Vec3(10, 10, 10)});
+  for (Polygon& p : s.polygons)
+    if (polygon_centroid(p).z > 0.99) p.material = 1;
+  return s;
+}
+
+// The box with a block standing inside: something can occlude.
+Scene box_with_block() {
+  Scene s = lit_box(0.5);
+  const double a = 0.4, b = 0.6, h = 0.3;
+  const Vec3 c[8] = {{a, a, 0}, {b, a, 0}, {b, b, 0}, {a, b, 0}, {a, a, h}, {b, a, h}, {b, b, h}, {a, b, h}};
+  for (const auto& q : {std::array<int, 4>{4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}})
+    s.polygons.push_back(test::quad(c[q[0]], c[q[1]], c[q[2]], c[q[3]]));  // facing out
+  return s;
+}
+
+// The block with a bottom face on the floor: a face pressed against another, back to back.
+Scene box_with_closed_block() {
+  Scene s = box_with_block();
+  s.polygons.push_back(test::quad({0.4, 0.4, 0}, {0.4, 0.6, 0}, {0.6, 0.6, 0}, {0.6, 0.4, 0}));  // facing down
+  return s;
+}
+
+// Rays from a face pressed against another start behind it and leave the scene: they say nothing of
+// openings (the lamp room was baked unbalanced for its table's bottom). A real opening still counts.
+TEST(EffectPlan, FacesPressedTogetherDoNotOpenAScene) {
+  uint64_t rays_cast = 0, pressed = 0;
+  const Scene closed = box_with_closed_block();
+  EXPECT_TRUE(is_closed(closed, RayScene(closed), rays_cast, pressed));
+  EXPECT_GT(pressed, 0u);
+  EXPECT_LT(pressed, rays_cast);
+  Scene lifted = closed;  // 1 cm above the floor, the bottom sees the floor: nothing pressed
+  for (size_t i = closed.polygons.size() - 6; i < closed.polygons.size(); ++i)
+    for (int k = 0; k < 4; ++k) lifted.polygons[i].v[k].z += 0.01;
+  rays_cast = pressed = 0;
+  EXPECT_TRUE(is_closed(lifted, RayScene(lifted), rays_cast, pressed));
+  EXPECT_EQ(pressed, 0u);
+  Scene open = closed;  // without its lid, the box is open, pressed faces or not
+  const auto lid = std::find_if(open.polygons.begin(), open.polygons.end(), [](const Polygon& p) { return polygon_centroid(p).z > 0.99; });
+  ASSERT_NE(lid, open.polygons.end());
+  open.polygons.erase(lid);
+  EXPECT_FALSE(is_closed(open, RayScene(open), rays_cast, pressed));
+}
+
+class EffectPlanBake : public test::TempDirTest {
+ protected:
+
+  // Bakes the scene; returns report.json.
+  nlohmann::json bake_scene(const Scene& scene, const std::string& name, const std::string& method,
+                            std::map<std::string, std::string> effects = {}) {
+    const std::string file = (dir_ / (name + ".glb")).string();
+    write_scene_gltf(scene, file);
+    BakeSettings s;
+    s.scene = file;
+    s.output = (dir_ / name).string();
+    s.method = method;
+    s.epsilon = 1e-3;
+    s.element_size = 0.125;
+    s.progress = false;
+    s.effects = std::move(effects);
+    bake(s);
+    std::ifstream in(s.output + "/report.json");
+    return nlohmann::json::parse(in);
+  }
+  double largest_difference(const std::string& a, const std::string& b) {
+    const ChunkMesh ma = read_bake_mesh((dir_ / a).string()), mb = read_bake_mesh((dir_ / b).string());
+    EXPECT_EQ(ma.radiosity.size(), mb.radiosity.size());
+    double d = 0;
+    for (size_t i = 0; i < std::min(ma.radiosity.size(), mb.radiosity.size()); ++i)
+      d = std::max(d, double(std::fabs(ma.radiosity[i] - mb.radiosity[i])));
+    return d;
+  }
+};
+
+TEST(EffectPlan, ConvexEnclosureHasNoOcclusion) {
+  EXPECT_TRUE(is_convex_enclosure(lit_box(0.5)));
+  EXPECT_FALSE(is_convex_enclosure(box_with_block()));
+}
+
+TEST(EffectPlan, NoVolumeClustersNoVolumetricVisibility) {
+  const Scene s = box_with_block();
+  const RayScene rays(s);
+  const ClusterTree tree = build_cluster_tree(s);
+  const VolumeClusters volumes = find_volume_clusters(s, tree, VolumeSettings{});
+  EXPECT_TRUE(volumes.empty());
+  const EffectPlan plan = plan_effects(s, rays, {}, false, "hierarchical", {}, &volumes);
+  EXPECT_FALSE(plan.volumes.on);
+  EXPECT_NE(plan.volumes.reason.find("no cluster of many small separate objects"), std::string::npos) << plan.volumes.reason;
+  EXPECT_THROW(plan_effects(s, rays, {}, false, "hierarchical", {{"volumes", "on"}}, &volumes), InputError);
+}
+
+TEST_F(EffectPlanBake, EmptyBoxCastsNoVisibilityRaysAndMatchesTheFullSolve) {
+  for (const std::string method : {"hierarchical", "classic"}) {
+    const nlohmann::json planned = bake_scene(lit_box(0.5), "planned-" + method, method);
+    const nlohmann::json forced = bake_scene(lit_box(0.5), "forced-" + method, method, {{"visibility", "on"}});
+    EXPECT_FALSE(planned["effects"]["visibility"]["on"].get<bool>()) << method;
+    EXPECT_EQ(planned["counts"]["visibility_rays"].get<uint64_t>(), 0u) << method;
+    EXPECT_TRUE(forced["effects"]["visibility"]["forced"].get<bool>());
+    EXPECT_LT(largest_difference("planned-" + method, "forced-" + method), 1e-3 * 10 / (1 - 0.5)) << method;
+  }
+  // With a block inside, visibility is on and rays are cast.
+  const nlohmann::json blocked = bake_scene(box_with_block(), "block", "hierarchical");
+  EXPECT_TRUE(blocked["effects"]["visibility"]["on"].get<bool>());
+  EXPECT_GT(blocked["counts"]["visibility_rays"].get<uint64_t>(), 0u);
+}
+
+TEST_F(EffectPlanBake, NonReflectingSceneIsDirectOnlyAndMatchesTheFullSolve) {
+  for (const std::string method : {"hierarchical", "classic"}) {
+    const nlohmann::json planned = bake_scene(lit_box(0.0), "planned-" + method, method);
+    const nlohmann::json forced = bake_scene(lit_box(0.0), "forced-" + method, method, {{"indirect", "on"}});
+    EXPECT_FALSE(planned["effects"]["indirect"]["on"].get<bool>()) << method;
+    EXPECT_EQ(largest_difference("planned-" + method, "forced-" + method), 0.0) << method;
+    if (method == "classic") EXPECT_EQ(planned["counts"]["iterations"].get<int>(), 1);
+  }
+  // Direct light only, forced on a reflecting box: darker than the full solve (no interreflection).
+  bake_scene(lit_box(0.5), "direct", "hierarchical", {{"indirect", "off"}});
+  bake_scene(lit_box(0.5), "full", "hierarchical");
+  const ChunkMesh direct = read_bake_mesh((dir_ / "direct").string()), full = read_bake_mesh((dir_ / "full").string());
+  double sum_direct = 0, sum_full = 0;
+  for (float b : direct.radiosity) sum_direct += b;
+  for (float b : full.radiosity) sum_full += b;
+  EXPECT_LT(sum_direct, sum_full);
+}
+
+TEST_F(EffectPlanBake, NoViewpointsNoImportance) {
+  const nlohmann::json r = bake_scene(box_with_block(), "no-views", "hierarchical");
+  EXPECT_FALSE(r["effects"]["importance"]["on"].get<bool>());
+  EXPECT_EQ(r["counts"]["importance_rays"].get<uint64_t>(), 0u);
+  EXPECT_EQ(r["solver"]["oracle"].get<std::string>(), "BF");
+  EXPECT_THROW(bake_scene(box_with_block(), "forced", "hierarchical", {{"importance", "on"}}), InputError);
+}
+
+}  // namespace
+}  // namespace walkrad
+
+namespace walkrad {
+namespace {
+
+double balance(const nlohmann::json& report) {
+  const auto& e = report["energy"];
+  double a = 0, m = 0;
+  for (int k = 0; k < 3; ++k) {
+    a += e["absorbed_w"][k].get<double>();
+    m += e["emitted_w"][k].get<double>();
+  }
+  return a / m;
+}
+
+// A closed scene: every leaf sends all its power through its links (hierarchical_solver.h, closed):
+// the power balance closes, where without it coarse links lose some.
+TEST_F(EffectPlanBake, ClosedSceneKeepsItsPower) {
+  const nlohmann::json planned = bake_scene(box_with_block(), "closed", "hierarchical");
+  const nlohmann::json off = bake_scene(box_with_block(), "open", "hierarchical", {{"closure", "off"}});
+  EXPECT_TRUE(planned["effects"]["closure"]["on"].get<bool>());
+  EXPECT_NEAR(balance(planned), 1.0, 0.01);
+  EXPECT_GT(std::fabs(balance(off) - 1.0), std::fabs(balance(planned) - 1.0));
+  // The block's bottom on the floor does not open the box: balanced as well.
+  const nlohmann::json pressed = bake_scene(box_with_closed_block(), "pressed", "hierarchical");
+  EXPECT_TRUE(pressed["effects"]["closure"]["on"].get<bool>());
+  EXPECT_NE(pressed["effects"]["closure"]["reason"].get<std::string>().find("pressed"), std::string::npos);
+  std::printf("absorbed / emitted: closed %.6f, off %.6f, pressed %.6f\n", balance(planned), balance(off), balance(pressed));
+  EXPECT_NEAR(balance(pressed), 1.0, 0.01);
+  // An open box (one wall removed) is not closed.
+  Scene open = box_with_block();
+  open.polygons.erase(open.polygons.begin() + 1);
+  EXPECT_FALSE(bake_scene(open, "no-lid", "hierarchical")["effects"]["closure"]["on"].get<bool>());
+}
+
+}  // namespace
+}  // namespace walkrad

@@ -1,0 +1,169 @@
+#include "walkrad/scene/contact_split.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "walkrad/scene/cluster_tree.h"
+
+namespace walkrad {
+
+namespace {
+
+using Loop = std::vector<Vec3>;  // a convex polygon's corners, counter-clockwise
+
+double loop_area(const Loop& l) {
+  Vec3 n;
+  for (size_t k = 0; k < l.size(); ++k) n += cross(l[k], l[(k + 1) % l.size()]);
+  return 0.5 * length(n);
+}
+
+// Splits a convex loop by the plane dot(x, n) = d into the parts on either side (either may be empty).
+void split_loop(const Loop& l, const Vec3& n, double d, Loop& below, Loop& above) {
+  below.clear();
+  above.clear();
+  for (size_t k = 0; k < l.size(); ++k) {
+    const Vec3& a = l[k];
+    const Vec3& b = l[(k + 1) % l.size()];
+    const double da = dot(a, n) - d, db = dot(b, n) - d;
+    if (da <= 0) below.push_back(a);
+    if (da >= 0) above.push_back(a);
+    if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+      const Vec3 x = a + (b - a) * (da / (da - db));
+      below.push_back(x);
+      above.push_back(x);
+    }
+  }
+}
+
+// A cut: the plane through an edge (a, b) lying on polygon q's plane, perpendicular to q.
+struct Cut {
+  Vec3 n;
+  double d;
+  double length;  // of the edge that made it
+};
+
+// At most this many cuts per polygon, the longest edges first: a wall's foot matters, the thirty
+// books on a shelf board would cut it into slivers for little gain.
+constexpr size_t kMaxCutsPerPolygon = 16;
+
+// Edges of polygon p that lie on q's plane and cross q's interior.
+void contact_cuts(const Polygon& q, const Vec3& qn, const Polygon& p, double tol, std::vector<Cut>& cuts) {
+  const Vec3 pn = polygon_normal(p);
+  if (std::fabs(dot(pn, qn)) > 1 - 1e-9) return;  // coplanar or parallel: no contact line
+  for (int k = 0; k < p.count; ++k) {
+    const Vec3 a = p.v[k], b = p.v[(k + 1) % p.count];
+    if (std::fabs(dot(a - q.v[0], qn)) > tol || std::fabs(dot(b - q.v[0], qn)) > tol) continue;
+    const Vec3 dir = b - a;
+    if (length(dir) <= tol) continue;
+    Cut c;
+    c.n = normalize(cross(dir, qn));
+    c.d = dot(c.n, a);
+    c.length = length(dir);
+    // Does the segment [a, b] touch q's interior? Clip it against q's edges.
+    double t0 = 0, t1 = 1;
+    for (int e = 0; e < q.count && t0 < t1; ++e) {
+      const Vec3 inward = cross(qn, q.v[(e + 1) % q.count] - q.v[e]);
+      const double s0 = dot(a - q.v[e], inward), s1 = dot(b - q.v[e], inward);
+      const double eps = tol * length(inward);
+      if (s0 < eps && s1 < eps) { t1 = t0; break; }
+      if (s0 < eps) t0 = std::max(t0, (eps - s0) / (s1 - s0));
+      if (s1 < eps) t1 = std::min(t1, (eps - s0) / (s1 - s0));
+    }
+    if (t1 - t0 > 1e-9) cuts.push_back(c);
+  }
+}
+
+void emit_loop(const Loop& l, const Polygon& like, std::vector<Polygon>& out) {
+  // A fan of quads (and a last triangle) from l[0]: convex pieces of a convex loop.
+  for (size_t k = 1; k + 1 < l.size(); k += 2) {
+    Polygon p = like;
+    if (k + 2 < l.size()) {
+      p.count = 4;
+      p.v = {l[0], l[k], l[k + 1], l[k + 2]};
+    } else {
+      p.count = 3;
+      p.v = {l[0], l[k], l[k + 1], Vec3{}};
+    }
+    if (polygon_area(p) > 0) out.push_back(p);
+  }
+}
+
+}  // namespace
+
+Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolerance) {
+  Scene out = scene;
+  out.polygons.clear();
+  const Bounds bounds = scene.bounds();
+  const double diag = length(bounds.diagonal());
+  const double tol = tolerance > 0 ? tolerance : 1e-6 * diag;
+  const ClusterTree tree = build_cluster_tree(scene);
+
+  std::vector<Cut> cuts;
+  std::vector<int32_t> stack;
+  for (uint32_t qi = 0; qi < scene.polygons.size(); ++qi) {
+    const Polygon& q = scene.polygons[qi];
+    const Vec3 qn = polygon_normal(q);
+    Bounds qb = polygon_bounds(q);
+    qb.extend(qb.lo - Vec3(tol, tol, tol));
+    qb.extend(qb.hi + Vec3(tol, tol, tol));
+    cuts.clear();
+    // Polygons whose bounds touch q's (a tree query), in tree order: deterministic.
+    stack.assign(1, 0);
+    while (!stack.empty() && !tree.nodes.empty()) {
+      const ClusterNode& node = tree.nodes[stack.back()];
+      stack.pop_back();
+      const Bounds& b = node.bounds;
+      if (b.hi.x < qb.lo.x || b.lo.x > qb.hi.x || b.hi.y < qb.lo.y || b.lo.y > qb.hi.y || b.hi.z < qb.lo.z || b.lo.z > qb.hi.z) continue;
+      if (!node.leaf()) { stack.push_back(node.child[1]); stack.push_back(node.child[0]); continue; }
+      for (uint32_t i = node.first; i < node.first + node.count; ++i)
+        if (tree.polygons[i] != qi) contact_cuts(q, qn, scene.polygons[tree.polygons[i]], tol, cuts);
+    }
+    if (cuts.empty()) {
+      out.polygons.push_back(q);
+      continue;
+    }
+    // One cut per line (collinear edges: a row of books, two boxes side by side), longest first.
+    for (Cut& c : cuts)
+      if (c.n.x < 0 || (c.n.x == 0 && (c.n.y < 0 || (c.n.y == 0 && c.n.z < 0)))) { c.n = -c.n; c.d = -c.d; }
+    // Lengths compared in steps of the tolerance, ties kept in discovery order (tree order): edges of
+    // equal length (a square box's feet) differ in their last bits once the scene is scaled or moved,
+    // and must not swap (the pieces, their order and thus the bake would change; docs/numerics.md).
+    std::stable_sort(cuts.begin(), cuts.end(),
+                     [&](const Cut& a, const Cut& b) { return std::llround(a.length / tol) > std::llround(b.length / tol); });
+    std::vector<Cut> unique;
+    for (const Cut& c : cuts) {
+      bool same = false;
+      for (const Cut& u : unique) same = same || (dot(c.n, u.n) > 1 - 1e-12 && std::fabs(c.d - u.d) <= tol);
+      if (!same) unique.push_back(c);
+      if (unique.size() == kMaxCutsPerPolygon) break;
+    }
+    cuts.swap(unique);
+    std::vector<Loop> pieces = {Loop(q.v.begin(), q.v.begin() + q.count)}, next;
+    Loop below, above;
+    const double min_area = tol * std::sqrt(polygon_area(q));  // no sliver thinner than the tolerance
+    uint64_t applied = 0;
+    for (const Cut& c : cuts) {
+      next.clear();
+      for (const Loop& l : pieces) {
+        split_loop(l, c.n, c.d, below, above);
+        if (below.size() >= 3 && above.size() >= 3 && loop_area(below) > min_area && loop_area(above) > min_area) {
+          next.push_back(below);
+          next.push_back(above);
+          ++applied;
+        } else {
+          next.push_back(l);
+        }
+      }
+      pieces.swap(next);
+    }
+    if (applied) {
+      ++stats.polygons_split;
+      stats.cuts += applied;
+    }
+    for (const Loop& l : pieces) emit_loop(l, q, out.polygons);
+  }
+  return out;
+}
+
+}  // namespace walkrad

@@ -1,0 +1,64 @@
+// Shaft culling (Haines & Wallace, "Shaft culling for efficient ray-traced radiosity", EGWR 1991).
+// The shaft between two axis-aligned boxes is their convex hull: the box around both, cut by up to
+// 8 planes through pairs of parallel box edges. A polygon outside the shaft cannot block any segment
+// between the two boxes; a shaft that holds no candidate means visibility 1 with no ray cast, for
+// the two nodes and for all their children (whose shafts lie inside it), so a link's candidate list
+// is filtered, not recomputed, for its children.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "walkrad/scene/cluster_tree.h"
+
+namespace walkrad {
+
+class Shaft {
+ public:
+  Shaft(const Bounds& a, const Bounds& b);
+
+  // Conservative: false only if the box lies entirely outside the shaft.
+  bool overlaps(const Bounds& box) const;
+  int plane_count() const { return planes_; }
+
+ private:
+  Bounds hull_;
+  struct Plane {
+    Vec3 n;     // outward
+    double d;   // points x with dot(n, x) > d are outside
+  };
+  Plane plane_[12];
+  int planes_ = 0;
+};
+
+// Polygons of the tree (other than exclude_a and exclude_b, the two ends' own polygons) whose
+// bounds overlap the shaft, in tree order.
+std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b);
+
+// The subset of candidates (a parent link's list) that overlaps a child link's shaft.
+std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                        uint32_t exclude_a, uint32_t exclude_b);
+
+// Volumetric visibility (volume_visibility.h): what lies in volume clusters and the multi-resolution
+// rule lets stand in as a medium is kept whole as one candidate, tagged: a ClusterTree node wholly in
+// volumes (its index with kVolumeNode), or a polygon in a volume (its index with kVolumePolygon).
+constexpr uint32_t kVolumeNode = 0x80000000u;
+constexpr uint32_t kVolumePolygon = 0x40000000u;
+constexpr uint32_t kVolumeTags = kVolumeNode | kVolumePolygon;
+
+struct VolumeTags {
+  const std::vector<uint8_t>& node;     // per tree node: every polygon below is in a volume
+  const std::vector<uint8_t>& polygon;  // per polygon: in a volume
+  std::function<bool(uint32_t tagged)> see_through;  // the rule, for a tagged candidate
+};
+
+// As above, with volume candidates kept whole where tags.see_through accepts them.
+std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b,
+                                       const VolumeTags& tags);
+// A parent's list (possibly tagged) for a child link: a tagged candidate the rule no longer accepts is
+// opened (a node into its polygons and the finer volume candidates the rule accepts).
+std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                        uint32_t exclude_a, uint32_t exclude_b, const VolumeTags& tags);
+
+}  // namespace walkrad

@@ -1,0 +1,116 @@
+// Visibility: shaft culling (Haines & Wallace) is conservative and lets unobstructed pairs skip rays;
+// contact splitting and ray offsets keep light from leaking under a wall standing on the floor.
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "walkrad/testing/test_scenes.h"
+#include "walkrad/scene/cluster_tree.h"
+#include "walkrad/scene/contact_split.h"
+#include "walkrad/classic/form_factor_matrix.h"
+#include "walkrad/classic/gauss_seidel.h"
+#include "walkrad/visibility/ray_scene.h"
+#include "walkrad/core/sampling.h"
+#include "walkrad/visibility/shaft.h"
+#include "walkrad/classic/subdivision.h"
+
+namespace walkrad {
+namespace {
+
+using test::quad;
+
+Bounds box(Vec3 lo, Vec3 hi) {
+  Bounds b;
+  b.extend(lo);
+  b.extend(hi);
+  return b;
+}
+
+// Every box a segment between the two boxes passes through overlaps the shaft (conservative), and
+// boxes off to the side do not.
+TEST(Shaft, IsConservativeAndCulls) {
+  const Bounds a = box({0, 0, 0}, {1, 1, 1}), b = box({4, 3, 0}, {5, 4, 1});
+  const Shaft shaft(a, b);
+  EXPECT_GT(shaft.plane_count(), 0);
+  Rng rng(7);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 p(rng.uniform(), rng.uniform(), rng.uniform());
+    const Vec3 q = Vec3(4, 3, 0) + Vec3(rng.uniform(), rng.uniform(), rng.uniform());
+    const Vec3 x = p + (q - p) * rng.uniform();
+    ASSERT_TRUE(shaft.overlaps(box(x, x + Vec3(1e-3, 1e-3, 1e-3))));
+  }
+  EXPECT_FALSE(shaft.overlaps(box({4, 0, 0}, {5, 1, 1})));  // the empty corner of the hull
+  EXPECT_FALSE(shaft.overlaps(box({0, 3, 0}, {1, 4, 1})));  // the other empty corner
+  EXPECT_TRUE(shaft.overlaps(box({2.4, 1.9, 0.4}, {2.6, 2.1, 0.6})));
+}
+
+// A room of two halves split by a wall that stands on the floor and touches the ceiling; the light
+// is on one side. The dark side must stay dark: below 1e-4 of the lit side.
+TEST(LightLeak, WallOnTheFloorLetsNoLightThrough) {
+  Scene s;
+  s.source = "split room";
+  s.materials = {{"white", {0.7, 0.7, 0.7}, {0, 0, 0}}, {"light", {0.5, 0.5, 0.5}, {10, 10, 10}}};
+  const double w = 4, h = 2, d = 2;
+  // Room [0,4]×[0,2]×[0,2], faces inwards; each face one polygon spanning both halves.
+  s.polygons = {quad({0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0}),   // floor (+y)
+                quad({0, h, 0}, {w, h, 0}, {w, h, d}, {0, h, d}),   // ceiling (−y)
+                quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0}),   // z = 0 (+z)
+                quad({0, 0, d}, {0, h, d}, {w, h, d}, {w, 0, d}),   // z = d (−z)
+                quad({0, 0, 0}, {0, h, 0}, {0, h, d}, {0, 0, d}),   // x = 0 (+x)
+                quad({w, 0, 0}, {w, 0, d}, {w, h, d}, {w, h, 0}),   // x = w (−x)
+                // The dividing wall at x = 2, one face to each side.
+                quad({2, 0, 0}, {2, 0, d}, {2, h, d}, {2, h, 0}),   // faces −x (lit side)
+                quad({2, 0, 0}, {2, h, 0}, {2, h, d}, {2, 0, d}),   // faces +x (dark side)
+                // The light, just under the ceiling on the left.
+                quad({0.8, h - 0.01, 0.8}, {1.2, h - 0.01, 0.8}, {1.2, h - 0.01, 1.2}, {0.8, h - 0.01, 1.2}, 1)};
+  ContactSplitStats split;
+  const Scene scene = split_contacts(s, split);
+  EXPECT_GE(split.polygons_split, 4u);  // floor, ceiling and the two long walls are cut at x = 2
+
+  const Subdivision sub = subdivide_uniform(scene, 0.25);
+  const RayScene rays(scene);
+  const ClusterTree tree = build_cluster_tree(scene);
+  FormFactorCounts counts;
+  FormFactorSettings settings;
+  settings.rays_per_point = 4;
+  const FormFactorMatrix f = compute_form_factors(sub, &rays, &tree, settings, counts);
+  std::vector<Vec3> rho, e;
+  for (const Element& el : sub.elements) {
+    rho.push_back(scene.materials[el.shape.material].reflectance);
+    e.push_back(scene.materials[el.shape.material].emission);
+  }
+  SolveStats stats;
+  const std::vector<Vec3> b = solve_gauss_seidel(f, rho, e, {}, stats);
+  double lit = 0, dark = 0;
+  for (size_t i = 0; i < b.size(); ++i) {
+    if (e[i].x > 0) continue;
+    const Vec3 c = sub.elements[i].centroid;
+    // The dividing wall's faces stand at x = 2: its −x face belongs to the lit side.
+    if (c.x < 2 || (c.x == 2 && sub.elements[i].normal.x < 0)) lit = std::max(lit, b[i].x);
+    else dark = std::max(dark, b[i].x);
+  }
+  EXPECT_GT(lit, 0.1);
+  EXPECT_LT(dark, 1e-4 * lit) << "dark " << dark << " lit " << lit;
+}
+
+// Pairs whose shaft holds nothing cast no rays; their form factors equal the unoccluded ones.
+TEST(ShaftCulling, UnobstructedPairsCastNoRays) {
+  const Scene box6 = test::closed_box(1.0, {0.5, 0.5, 0.5}, {1, 1, 1});
+  Scene scene = box6;
+  // An occluder in one corner only: most pairs of the room's elements cannot see it in their shaft.
+  scene.polygons.push_back(quad({0.1, 0.2, 0.1}, {0.1, 0.2, 0.2}, {0.2, 0.2, 0.2}, {0.2, 0.2, 0.1}));
+  const Subdivision sub = subdivide_uniform(scene, 0.25);
+  const RayScene rays(scene);
+  const ClusterTree tree = build_cluster_tree(scene);
+  FormFactorCounts culled, all;
+  const FormFactorMatrix fc = compute_form_factors(sub, &rays, &tree, {}, culled);
+  const FormFactorMatrix fa = compute_form_factors(sub, &rays, nullptr, {}, all);
+  EXPECT_GT(culled.unoccluded, culled.pairs / 4);
+  EXPECT_LT(culled.rays, all.rays);
+  ASSERT_EQ(fc.rows(), fa.rows());
+  // Culling only skips rays that would all have arrived.
+  for (size_t i = 0; i < fc.rows(); ++i) EXPECT_NEAR(fc.row_sum(i), fa.row_sum(i), 0.05) << i;
+}
+
+}  // namespace
+}  // namespace walkrad
