@@ -168,6 +168,31 @@ for name, cap in (("max-seconds", ["--max-seconds", "0.05"]), ("max-memory", ["-
     print(f"{'ok  ' if not problems else 'FAIL'} {name}: exit {r.returncode}: {r.stderr.strip()}")
     failures += [f"{name}: {p}" for p in problems]
 
+# A bake that asks for more than the memory cap allows stops before or within the round that would
+# pass it: exit 6, a message naming the setting, nothing written, and its peak memory near the cap
+# (the Cornell box at ε = 1e-7 grows to gigabytes; 300 MiB is reached in its 5th or 6th round).
+cases.append("memory-predicted")
+capped = os.path.join(work, "capped-bake")
+err_path = os.path.join(work, "capped-bake.stderr")
+with open(err_path, "w") as err_file:
+    p = subprocess.Popen([walkrad, "bake", cornell, "-o", capped, "--quiet", "--epsilon", "1e-7", "--max-memory-mb", "300",
+                          "--threads", "2"], stdout=subprocess.DEVNULL, stderr=err_file)
+    _, status, usage = os.wait4(p.pid, 0)
+    p.returncode = os.waitstatus_to_exitcode(status)
+err = open(err_path).read()
+peak_mib = usage.ru_maxrss / 1024
+problems = []
+if p.returncode != 6:
+    problems.append(f"exit code {p.returncode}, expected 6")
+if "--max-memory-mb 300" not in err or "no output written" not in err:
+    problems.append("stderr does not name --max-memory-mb and say nothing was written")
+if os.path.exists(capped):
+    problems.append("an output folder was written")
+if peak_mib > 300 * 1.25:
+    problems.append(f"peak memory {peak_mib:.0f} MiB, more than a quarter past the cap")
+print(f"{'ok  ' if not problems else 'FAIL'} memory-predicted: exit {p.returncode}, peak {peak_mib:.0f} MiB: {err.strip()}")
+failures += [f"memory-predicted: {p}" for p in problems]
+
 # The runtime refuses a manifest naming a chunk outside its folder, before opening anything.
 if walkrad_view:
     escape = os.path.join(work, "escape-bake")

@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
                        "stop with exit code 6, writing nothing, when the bake runs longer (checked between phases and solve rounds)")
       ->check(CLI::NonNegativeNumber);
   bake_cmd->add_option("--max-memory-mb", bs.caps.max_memory_mb,
-                       "stop with exit code 6, writing nothing, when peak memory passes this many MiB (checked as --max-seconds)");
+                       "stop with exit code 6, writing nothing, when memory passes this many MiB or the next solve round is "
+                       "predicted to (default: 60% of the machine's memory; 0: no cap)");
   bool quiet = false;
   bake_cmd->add_flag("-q,--quiet", quiet, "no progress lines");
 

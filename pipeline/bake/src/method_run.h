@@ -30,6 +30,7 @@ class Phases {
  public:
   Phases(bool progress, const CapWatch& caps) : progress_(progress), caps_(caps) {}
   void check(const std::string& where) const { caps_.check(where); }
+  const CapWatch& caps() const { return caps_; }
   void start(const std::string& name) {
     caps_.check("before " + name);
     finish();

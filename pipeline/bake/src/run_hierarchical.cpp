@@ -76,12 +76,35 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   if (plan.punctual.on) hs.lights = &scene.lights;
   if (plan.transmission.on) hs.twins = &twins;
   hs.volumes = volumes;
+  hs.checkpoint = [&phases](const char* where, uint64_t more) {
+    phases.check(std::string("solve: ") + where);
+    if (more > 0)
+      phases.caps().check_predicted(std::string("solve: ") + where, resident_memory_mb() + (more >> 20),
+                                    "the list of new links (" + std::to_string((more >> 20)) + " MiB more)");
+  };
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
-  uint64_t previous_new = 0;
+  uint64_t previous_new = 0, previous_rss = resident_memory_mb();
   solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
-    phases.check("solve round " + std::to_string(stats.iterations.size()));
+    const std::string round = std::to_string(stats.iterations.size());
+    phases.check("solve round " + round);
+    // Memory, predicted: the next round adds links at the rate the last two rounds' additions
+    // changed by, and memory with them (links and elements grow together).
+    const uint64_t rss = resident_memory_mb();
+    if (previous_new > 0 && it.new_links > 0 && rss > previous_rss) {
+      // At most as many as the last round: the first rounds multiply their links by 100 and more,
+      // a rate no bake keeps, and the Cornell box's default bake, whose additions went ×2.3 from its
+      // 4th to its 5th round, then added half as many (a ratio kept would have predicted 343 MiB
+      // for its 197). A faster growth is caught within the round (HierarchicalSettings::checkpoint).
+      const double growth = std::min(1.0, double(it.new_links) / double(previous_new));
+      const auto predicted = uint64_t(double(rss) + double(rss - previous_rss) * growth);
+      phases.caps().check_predicted("solve round " + round, predicted,
+                                    "solve round " + std::to_string(stats.iterations.size() + 1) + " (" +
+                                        std::to_string(it.links) + " links, +" + std::to_string(it.new_links) +
+                                        " in the last round)");
+    }
+    previous_rss = rss;
     const auto now = Clock::now();
     const double left = refinement_seconds_left(previous_new, it.new_links, std::chrono::duration<double>(now - round_start).count());
     previous_new = it.new_links;

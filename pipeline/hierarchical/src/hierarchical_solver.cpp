@@ -54,9 +54,11 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     } else {
       refine_existing();
     }
+    if (s_.checkpoint) s_.checkpoint("refinement", 0);
     if (lights()) compute_missing_direct();  // elements the refinement created
     is.new_links = pending_.size() - before;
     evaluate_pending(is);
+    if (s_.checkpoint) s_.checkpoint("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
     const bool settled = is.new_links == 0;
     if (settled && converged_before) {

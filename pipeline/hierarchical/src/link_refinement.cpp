@@ -144,6 +144,9 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent)
   if (blockers > 4) samples *= 2;
   if (blockers > 64) samples *= 2;
   if (split) samples *= 2;
+  // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
+  if (s_.checkpoint && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
+    s_.checkpoint("refinement", 2 * pending_.capacity() * sizeof(Pending));
   pending_.push_back({i, j, s_.visibility && blockers > size_t(volumes > 0), samples, s_.visibility && volumes > 0});
 }
 
@@ -178,6 +181,7 @@ std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& sha
 void Solver::refine_existing() {
   const size_t n = h_.nodes().size();
   for (size_t i = 0; i < n; ++i) {
+    if (s_.checkpoint && i % 4096 == 4095) s_.checkpoint("refinement", 0);
     if (h_[i].links.empty()) continue;
     std::vector<Link> links = std::move(h_[i].links);
     h_[i].links.clear();

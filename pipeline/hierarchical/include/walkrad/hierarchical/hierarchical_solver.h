@@ -61,6 +61,11 @@ struct HierarchicalSettings {
   const std::vector<uint32_t>* twins = nullptr;
   // Volumetric visibility through volume clusters (volume_visibility.h); null: exact rays only. Not owned.
   const VolumeVisibility* volumes = nullptr;
+  // Called between steps of a round (every 4,096 receivers of a refinement pass, before and after
+  // the new links are evaluated, and before the list of new links grows: `more` bytes about to be
+  // allocated, else 0), never from worker threads: the bake's memory cap (bake_caps.h) throws from
+  // here, so that a round cannot run past it. Empty: nothing.
+  std::function<void(const char* where, uint64_t more)> checkpoint;
 };
 
 struct IterationStats {
