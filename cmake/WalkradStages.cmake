@@ -2,8 +2,9 @@
 # the order of the data flow. A stage may link only stages declared before it; walkrad_stage() stops
 # the configuration otherwise, so a later stage's headers are never on an earlier stage's include path.
 # walkrad_stage_forbid() states links a stage must not have even indirectly (the reference tracer's
-# independence from the solvers); pipeline/stages.json in the build tree records the graph for the
-# layout test (tests/layout/check_layout.py), which also scans every #include.
+# independence from the solvers). pipeline/stages.json in the build tree records the graph for the
+# layout test (tests/layout/check_layout.py), which scans every #include against it; the rules here
+# are tested on a scratch project (tests/layout/stage_rules).
 
 # walkrad_stage(NAME SOURCES src... STAGES earlier-stage... PUBLIC lib... PRIVATE lib...)
 function(walkrad_stage name)
@@ -50,11 +51,9 @@ function(walkrad_stage_forbid name)
       message(FATAL_ERROR "pipeline/${name} links stage '${s}' (through ${reached}): ${F_REASON}")
     endif()
   endforeach()
-  set_property(GLOBAL APPEND PROPERTY WALKRAD_STAGE_FORBIDDERS ${name})
-  set_property(GLOBAL PROPERTY WALKRAD_STAGE_FORBID_${name} ${F_STAGES})
 endfunction()
 
-# Writes <build>/pipeline/stages.json: {"order": [...], "deps": {stage: [...]}, "forbid": {stage: [...]}}.
+# Writes <build>/pipeline/stages.json: {"order": [...], "deps": {stage: [...]}}.
 function(walkrad_stages_write_json path)
   # A CMake list as a JSON array of strings.
   function(json_array list out)
@@ -73,16 +72,8 @@ function(walkrad_stages_write_json path)
     json_array("${deps}" a)
     list(APPEND deps_json "\"${s}\": ${a}")
   endforeach()
-  set(forbid_json "")
-  get_property(forbidders GLOBAL PROPERTY WALKRAD_STAGE_FORBIDDERS)
-  foreach(s IN LISTS forbidders)
-    get_property(f GLOBAL PROPERTY WALKRAD_STAGE_FORBID_${s})
-    json_array("${f}" a)
-    list(APPEND forbid_json "\"${s}\": ${a}")
-  endforeach()
   list(JOIN deps_json ", " deps_json)
-  list(JOIN forbid_json ", " forbid_json)
-  file(WRITE ${path} "{\"order\": ${order_json}, \"deps\": {${deps_json}}, \"forbid\": {${forbid_json}}}\n")
+  file(WRITE ${path} "{\"order\": ${order_json}, \"deps\": {${deps_json}}}\n")
 endfunction()
 
 # walkrad_stage_tests(NAME SOURCES test... LINK extra-lib...): the stage's GoogleTest executable.

@@ -1,4 +1,4 @@
-// The sweep's error measures (accuracy.h) on hand-computed cases.
+// The sweep's error measures (error_measures.h) on hand-computed cases.
 #include <cmath>
 
 #include <gtest/gtest.h>

@@ -30,7 +30,9 @@ class Phases {
  public:
   Phases(bool progress, const CapWatch& caps) : progress_(progress), caps_(caps) {}
   void check(const std::string& where) const { caps_.check(where); }
-  const CapWatch& caps() const { return caps_; }
+  void check_predicted(const std::string& where, uint64_t predicted_mb, const std::string& what) const {
+    caps_.check_predicted(where, predicted_mb, what);
+  }
   void start(const std::string& name) {
     caps_.check("before " + name);
     finish();

@@ -79,8 +79,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   hs.checkpoint = [&phases](const char* where, uint64_t more) {
     phases.check(std::string("solve: ") + where);
     if (more > 0)
-      phases.caps().check_predicted(std::string("solve: ") + where, resident_memory_mb() + (more >> 20),
-                                    "the list of new links (" + std::to_string((more >> 20)) + " MiB more)");
+      phases.check_predicted(std::string("solve: ") + where, resident_memory_mb() + (more >> 20),
+                             "the list of new links (" + std::to_string(more >> 20) + " MiB more)");
   };
   HierarchicalStats stats;
   const auto t0 = Clock::now();
@@ -99,10 +99,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
       // for its 197). A faster growth is caught within the round (HierarchicalSettings::checkpoint).
       const double growth = std::min(1.0, double(it.new_links) / double(previous_new));
       const auto predicted = uint64_t(double(rss) + double(rss - previous_rss) * growth);
-      phases.caps().check_predicted("solve round " + round, predicted,
-                                    "solve round " + std::to_string(stats.iterations.size() + 1) + " (" +
-                                        std::to_string(it.links) + " links, +" + std::to_string(it.new_links) +
-                                        " in the last round)");
+      phases.check_predicted("solve round " + round, predicted,
+                             "solve round " + std::to_string(stats.iterations.size() + 1) + " (" +
+                                 std::to_string(it.links) + " links, +" + std::to_string(it.new_links) + " in the last round)");
     }
     previous_rss = rss;
     const auto now = Clock::now();

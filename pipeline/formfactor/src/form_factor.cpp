@@ -1,4 +1,4 @@
-// Form factors by Lambert's contour formula (formfactor.h).
+// Form factors by Lambert's contour formula (form_factor.h).
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/core/rounding.h"
 

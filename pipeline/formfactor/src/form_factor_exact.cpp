@@ -1,4 +1,4 @@
-// Exact polygon-to-polygon form factor by the double contour integral (formfactor_exact.h).
+// Exact polygon-to-polygon form factor by the double contour integral (form_factor_exact.h).
 //
 //   A_i F_ij = (1/2π) Σ_k Σ_l (d_k · d_l) ∫_0^{L_k} ∫_0^{L_l} ln |x_k(s) − y_l(t)| dt ds
 // over the edges x_k(s) = a_k + d_k s of i and y_l(t) = b_l + d_l t of j (d unit, L the length).

@@ -1,4 +1,4 @@
-// Monte Carlo form factors by area sampling of both polygons (formfactor_montecarlo.h).
+// Monte Carlo form factors by area sampling of both polygons (form_factor_monte_carlo.h).
 #include "walkrad/formfactor/form_factor_monte_carlo.h"
 
 #include <algorithm>

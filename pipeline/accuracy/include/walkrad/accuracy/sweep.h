@@ -2,7 +2,7 @@
 // and importance-driven) and of element sizes (classic), each bake a child process (bake_process.h)
 // for its own time and peak memory; measures each against the independent reference (reference_tracer.h)
 // at sample points seen from the walkthrough (view_samples.h) and in images from its viewpoints
-// (accuracy.h); writes sweep.csv, sweep.json, reference images, and — through python3-matplotlib —
+// (error_measures.h); writes sweep.csv, sweep.json, reference images, and — through python3-matplotlib —
 // plots and report.md (docs/accuracy.md explains every column).
 #pragma once
 

@@ -56,7 +56,7 @@ struct HierarchicalSettings {
   // Punctual lights (punctual_lights.h), shot straight to the elements: an element is split while the
   // irradiance they give varies over it by more than ε allows (ρ · spread · W > ε Φ). Not owned.
   const std::vector<PunctualLight>* lights = nullptr;
-  // Transmission twins per polygon (transmission.h; kNoTwin: none): a leaf of a transmitting polygon
+  // Transmission twins per polygon (walkrad/scene/transmission_twins.h; kNoTwin: none): a leaf of a transmitting polygon
   // adds τ × what its twin receives at its centroid. No aggregation correction then. Not owned.
   const std::vector<uint32_t>* twins = nullptr;
   // Volumetric visibility through volume clusters (volume_visibility.h); null: exact rays only. Not owned.

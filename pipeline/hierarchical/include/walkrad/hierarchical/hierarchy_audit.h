@@ -11,7 +11,7 @@ namespace walkrad {
 
 // The hierarchical method: the leaves of the hierarchy, each receiving along its own links and its
 // ancestors' (irradiance and row sums pushed down as the solver does, without its row-sum clamp).
-// twins: transmission twins per polygon (transmission.h), or nullptr.
+// twins: transmission twins per polygon (walkrad/scene/transmission_twins.h), or nullptr.
 EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twins = nullptr);
 
 }  // namespace walkrad

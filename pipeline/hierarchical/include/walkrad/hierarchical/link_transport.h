@@ -24,7 +24,7 @@
 namespace walkrad {
 
 // A leaf's row sum well above 1 means it receives more than any enclosure could send it (coincident
-// surfaces in the input): its irradiance is scaled back to a row sum of 1. See hierarchical_solver.cpp.
+// surfaces in the input): its irradiance is scaled back to a row sum of 1. See Solver::gather (src/solver.h).
 // Balanced leaves are exempt: their factors make a Σ F s exactly 1, whatever a Σ F is (a receive
 // factor of 2.6 against sources sending 0.38 was clamped as coincident and lost that light).
 constexpr double kMaxRowSum = 1.5;
