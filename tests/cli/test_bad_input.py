@@ -188,7 +188,9 @@ if "--max-memory-mb 300" not in err or "no output written" not in err:
     problems.append("stderr does not name --max-memory-mb and say nothing was written")
 if os.path.exists(capped):
     problems.append("an output folder was written")
-if peak_mib > 300 * 1.25:
+# Under AddressSanitizer the process keeps up to 256 MiB of freed blocks in quarantine and pads every
+# allocation with red zones: memory the bake neither sees nor predicts, so the peak says nothing there.
+if peak_mib > 300 * 1.25 and not os.environ.get("WALKRAD_SANITIZED"):
     problems.append(f"peak memory {peak_mib:.0f} MiB, more than a quarter past the cap")
 print(f"{'ok  ' if not problems else 'FAIL'} memory-predicted: exit {p.returncode}, peak {peak_mib:.0f} MiB: {err.strip()}")
 failures += [f"memory-predicted: {p}" for p in problems]
