@@ -28,7 +28,7 @@ if not os.path.exists(os.path.join(office, "office-floor.glb")):
 scenes = {
     "Cornell box (ε 1e-5)": (os.path.join(root, "examples/cornell-box/cornell-box.gltf"), []),
     "office-floor, 8 rooms (ε 1e-4)": (os.path.join(office, "office-floor.glb"),
-                                       ["--views", os.path.join(office, "office-floor-walkthrough.json"), "--epsilon", "1e-4"]),
+                                       ["--views", os.path.join(office, "office-floor-walkthrough.json")]),
 }
 
 

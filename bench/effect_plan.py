@@ -35,7 +35,7 @@ def bake(scene, args, name):
     for k in range(runs):
         path = os.path.join(out, name)
         t0 = time.monotonic()
-        subprocess.run([walkrad, "bake", scene, "-o", path, "-q", "--epsilon", "1e-4", *args], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([walkrad, "bake", scene, "-o", path, "-q", *args], check=True, stdout=subprocess.DEVNULL)
         times.append(time.monotonic() - t0)
         with open(os.path.join(path, "report.json")) as f:
             report = json.load(f)

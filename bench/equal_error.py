@@ -11,7 +11,7 @@ import sys
 rows = list(csv.DictReader(open(os.path.join(sys.argv[1], "sweep.csv"))))
 vi = sorted([r for r in rows if r["method"] == "hierarchical"], key=lambda r: -float(r["rms_weighted"]))
 imp = [r for r in rows if r["method"] == "importance"]
-print("| importance ε | error (w) | balance | CPU s | links | view-independent at that error: CPU s | links | CPU ratio | wall ratio | links ratio |")
+print("| importance --error | error (w) | balance | CPU s | links | view-independent at that error: CPU s | links | CPU ratio | wall ratio | links ratio |")
 print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
 for r in imp:
     e = float(r["rms_weighted"])
@@ -21,10 +21,10 @@ for r in imp:
             t = math.log(ea / e) / math.log(ea / eb)
             at = lambda key: float(a[key]) * (float(b[key]) / float(a[key])) ** t
             cpu, wall, links = at("cpu_seconds"), at("seconds"), at("links")
-            print(f"| {r['epsilon']} | {100 * e:.2f}% | {float(r['absorbed_over_emitted']):.3f} | {float(r['cpu_seconds']):.1f} | "
+            print(f"| {r['error']} | {100 * e:.2f}% | {float(r['absorbed_over_emitted']):.3f} | {float(r['cpu_seconds']):.1f} | "
                   f"{int(r['links']):,} | {cpu:.1f} | {int(links):,} | {cpu / float(r['cpu_seconds']):.2f}× | "
                   f"{wall / float(r['seconds']):.2f}× | {float(r['links']) / links:.2f} |")
             break
     else:
-        print(f"| {r['epsilon']} | {100 * e:.2f}% | {float(r['absorbed_over_emitted']):.3f} | {float(r['cpu_seconds']):.1f} | "
+        print(f"| {r['error']} | {100 * e:.2f}% | {float(r['absorbed_over_emitted']):.3f} | {float(r['cpu_seconds']):.1f} | "
               f"{int(r['links']):,} | outside the view-independent runs' range | | | | |")

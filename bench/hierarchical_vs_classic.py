@@ -41,10 +41,10 @@ else:
     fine = bake(fine_name, "--method", "classic", "--element-size", fine_size, "--rays", "2")
 
 runs = [("classic, default mesh", bake("classic-default", "--method", "classic"))]
-for eps in ["1e-3", "1e-4", "1e-5", "3e-6"]:
-    runs.append((f"hierarchical, ε = {eps}", bake(f"hier-{eps}", "--epsilon", eps)))
-for eps in ["1e-4", "1e-5"]:
-    runs.append((f"hierarchical view-independent, ε = {eps}", bake(f"hier-vi-{eps}", "--epsilon", eps, "--view-independent")))
+for eps in ["0.4", "0.2", "0.1", "0.05"]:
+    runs.append((f"hierarchical, --error {eps}", bake(f"hier-{eps}", "--error", eps)))
+for eps in ["0.2", "0.1"]:
+    runs.append((f"hierarchical view-independent, --error {eps}", bake(f"hier-vi-{eps}", "--error", eps, "--view-independent")))
 rms = {}
 res = subprocess.run([os.path.join(build, "bench/walkrad_compare_bakes"), fine[0], *[r[1][0] for r in runs]],
                      check=True, capture_output=True, text=True).stdout

@@ -3,7 +3,7 @@
 prints the table for docs/performance.md: faces read, polygons, elements, links, time, energy balance.
 The scenes stay outside the repository (their licence is not ours).
 
-Usage: bench/mgf_scenes.py [BUILD_DIR] [EPSILON]   (default build, 1e-4)"""
+Usage: bench/mgf_scenes.py [BUILD_DIR] [ERROR]   (default build, 0.1)"""
 import json
 import os
 import subprocess
@@ -11,20 +11,20 @@ import sys
 import time
 
 build = sys.argv[1] if len(sys.argv) > 1 else "build"
-eps = sys.argv[2] if len(sys.argv) > 2 else "1e-4"
+eps = sys.argv[2] if len(sys.argv) > 2 else "0.1"
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 scenes = os.path.join(os.path.dirname(root), "shared/scenes/mgf")
 out = os.path.join(build, "bench-mgf")
 os.makedirs(out, exist_ok=True)
 
-print(f"View-independent hierarchical bakes, ε = {eps}, 2 threads, one run each\n")
+print(f"View-independent hierarchical bakes, --error {eps}, 2 threads, one run each\n")
 print("| scene | input polygons | elements | links | rays | time (s) | absorbed / emitted | finite |")
 print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
 for scene in ["cube.mgf", "corridor.mgf", "office3/office.mgf", "hospital/hosp.mgf"]:
     path = os.path.join(out, scene.replace("/", "-") + ".bake")
     t0 = time.monotonic()
     r = subprocess.run([os.path.join(build, "pipeline/walkrad"), "bake", os.path.join(scenes, scene), "-o", path, "-q",
-                        "--view-independent", "--epsilon", eps], capture_output=True, text=True)
+                        "--view-independent", "--error", eps], capture_output=True, text=True)
     seconds = time.monotonic() - t0
     if r.returncode != 0:
         print(f"| {scene} | failed: {r.stderr.strip()[:120]} |")

@@ -4,7 +4,7 @@ Generates the building with examples/office-floor/make_office_floor.py for each 
 view-independently and (for the default 8 rooms) importance-driven from its walkthrough, at one ε,
 and prints the tables for docs/performance.md.
 
-Usage: bench/office_floor.py [BUILD_DIR] [EPSILON] [SIZES]   (default build, 1e-4, 1,2,4,8)"""
+Usage: bench/office_floor.py [BUILD_DIR] [ERROR] [SIZES]   (default build, 0.1, 1,2,4,8)"""
 import json
 import os
 import subprocess
@@ -12,7 +12,7 @@ import sys
 import time
 
 build = sys.argv[1] if len(sys.argv) > 1 else "build"
-eps = sys.argv[2] if len(sys.argv) > 2 else "1e-4"
+eps = sys.argv[2] if len(sys.argv) > 2 else "0.1"
 sizes = [int(x) for x in (sys.argv[3] if len(sys.argv) > 3 else "1,2,4,8").split(",")]
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 out = os.path.join(build, "bench-office")
@@ -30,7 +30,7 @@ def generate(rooms):
 def bake(name, scene, views, *args):
     path = os.path.join(out, name)
     t0 = time.monotonic()
-    subprocess.run([walkrad, "bake", scene, "--views", views, "-o", path, "-q", "--epsilon", eps, *args], check=True,
+    subprocess.run([walkrad, "bake", scene, "--views", views, "-o", path, "-q", "--error", eps, *args], check=True,
                    stdout=subprocess.DEVNULL)
     seconds = time.monotonic() - t0
     with open(os.path.join(path, "report.json")) as f:
@@ -44,7 +44,7 @@ rows = []
 for rooms in sizes:
     scene, views = generate(rooms)
     rows.append((rooms,) + bake(f"vi-{rooms}", scene, views, "--view-independent"))
-print(f"View-independent bakes, ε = {eps}, 2 threads, one run each\n")
+print(f"View-independent bakes, --error {eps}, 2 threads, one run each\n")
 print("| rooms | input polygons | elements | links | rays | time (s) | links × | time × | absorbed / emitted |")
 print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
 prev = None
@@ -58,7 +58,7 @@ if 8 in sizes:
     scene, views = generate(8)
     vi = next(r for r in rows if r[0] == 8)
     imp = bake("importance-8", scene, views)
-    print(f"\nImportance-driven against view-independent, 8 rooms, ε = {eps} (walkthrough visits 2 rooms)\n")
+    print(f"\nImportance-driven against view-independent, 8 rooms, --error {eps} (walkthrough visits 2 rooms)\n")
     print("| oracle | elements | links | rays | time (s) | absorbed / emitted |")
     print("| --- | ---: | ---: | ---: | ---: | ---: |")
     for name, (seconds, counts, balance) in [("view-independent (B·A·ρ·F)", vi[1:]), ("importance (B·I·ρ·F)", imp)]:

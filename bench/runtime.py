@@ -50,7 +50,7 @@ with open(dolly, "w") as f:
 subprocess.run([sys.executable, os.path.join(root, "examples/office-floor/make_office_floor.py"), "--rooms", "8",
                 "--detail", "0.25", "--out", out], check=True, stdout=subprocess.DEVNULL)
 office = bake("office-floor", os.path.join(out, "office-floor.glb"), "--views",
-              os.path.join(out, "office-floor-walkthrough.json"), "--epsilon", "1e-3", "--chunk-triangles", "2000")
+              os.path.join(out, "office-floor-walkthrough.json"), "--quality", "draft", "--chunk-triangles", "2000")
 
 whole = play(office, "--fps", "0")["resident_bytes"]
 cases = [("Cornell box, its camera", cornell, ["--fps", "0"]),

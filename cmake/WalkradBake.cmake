@@ -5,7 +5,7 @@
 #                    SCENE  ${CMAKE_CURRENT_SOURCE_DIR}/level1.glb
 #                    VIEWS  ${CMAKE_CURRENT_SOURCE_DIR}/level1-walkthrough.json   # optional
 #                    OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/level1.bake
-#                    OPTIONS --epsilon 1e-4                                        # optional
+#                    OPTIONS --quality medium                                      # optional
 #                    ALL)                                                          # optional
 #
 # The bake re-runs only when the scene, the walkthrough, the options or the walkrad executable change

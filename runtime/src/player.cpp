@@ -1,6 +1,7 @@
 // Player (player.h): camera → priorities → chunk cache → renderer, with the timings of RenderStats.
 #include "walkrad/runtime/player.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <epoxy/gl.h>
@@ -62,7 +63,18 @@ void Player::draw(int width, int height, MissPolicy policy) {
     stats_.chunk_misses += missing;
     ++stats_.frames_with_misses;
   }
-  if (missing && (first || policy == MissPolicy::kWait)) chunks_->wait_for(needed, priority_);
+  if (first && camera_.path_frame && *camera_.path_frame + 1 < manifest_.viewpoints.size()) {
+    // The first frame is a loading screen anyway: it also waits for what the next frame needs, which
+    // no prefetch could bring in the one frame's time between them.
+    CameraPlace next = camera_;
+    ++*next.path_frame;
+    std::vector<uint32_t> soon = needed;
+    for (uint32_t c : chunks_needed(manifest_, next))
+      if (std::find(soon.begin(), soon.end(), c) == soon.end()) soon.push_back(c);
+    chunks_->wait_for(soon, priority_);
+  } else if (missing && (first || policy == MissPolicy::kWait)) {
+    chunks_->wait_for(needed, priority_);
+  }
 
   const Mat4 view_projection = walkrad::view_projection(camera_.view, manifest_.bounds, double(width) / double(height));
   renderer_.begin_frame(width, height);

@@ -137,7 +137,7 @@ expect("mgf-negative-emission", [bad_mgf], 3, bad_mgf, "line 2", "emittance must
 flat, _, _ = with_extra_triangle("flat", [(0.1, 0.1, 0.1), (0.2, 0.1, 0.1), (0.2, 0.1, 0.1)])
 flat_out = os.path.join(work, "flat-ok")
 cases.append("degenerate-dropped")
-r = subprocess.run([walkrad, "bake", flat, "-o", flat_out, "--quiet", "--epsilon", "1e-3"], capture_output=True, text=True)
+r = subprocess.run([walkrad, "bake", flat, "-o", flat_out, "--quiet", "--quality", "draft"], capture_output=True, text=True)
 ok = r.returncode == 0 and f"warning: {flat}: 1 zero-area triangles dropped" in r.stderr and \
     os.path.isfile(os.path.join(flat_out, "manifest.json"))
 print(f"{'ok  ' if ok else 'FAIL'} degenerate-dropped: exit {r.returncode}: {r.stderr.strip()}")
@@ -170,12 +170,12 @@ for name, cap in (("max-seconds", ["--max-seconds", "0.05"]), ("max-memory", ["-
 
 # A bake that asks for more than the memory cap allows stops before or within the round that would
 # pass it: exit 6, a message naming the setting, nothing written, and its peak memory near the cap
-# (the Cornell box at ε = 1e-7 grows to gigabytes; 300 MiB is reached in its 5th or 6th round).
+# (the Cornell box at --error 0.001 grows to gigabytes).
 cases.append("memory-predicted")
 capped = os.path.join(work, "capped-bake")
 err_path = os.path.join(work, "capped-bake.stderr")
 with open(err_path, "w") as err_file:
-    p = subprocess.Popen([walkrad, "bake", cornell, "-o", capped, "--quiet", "--epsilon", "1e-7", "--max-memory-mb", "300",
+    p = subprocess.Popen([walkrad, "bake", cornell, "-o", capped, "--quiet", "--error", "0.001", "--max-memory-mb", "300",
                           "--threads", "2"], stdout=subprocess.DEVNULL, stderr=err_file)
     _, status, usage = os.wait4(p.pid, 0)
     p.returncode = os.waitstatus_to_exitcode(status)

@@ -14,12 +14,12 @@ shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 scene = os.path.join(source, "examples/cornell-box/cornell-box.gltf")
 out = os.path.join(work, "cornell.bake")
-quick = [walkrad, "bake", scene, "-o", out, "-q", "--epsilon", "1e-3"]
+quick = [walkrad, "bake", scene, "-o", out, "-q", "--quality", "draft"]
 subprocess.run(quick, check=True, stdout=subprocess.DEVNULL)
 before = {p: open(p, "rb").read() for p in glob.glob(os.path.join(out, "*"))}
 
 # A long bake into the same folder, killed once it is solving (its staging folder exists).
-slow = subprocess.Popen([walkrad, "bake", scene, "-o", out, "-q", "--epsilon", "1e-7"], stdout=subprocess.DEVNULL)
+slow = subprocess.Popen([walkrad, "bake", scene, "-o", out, "-q", "--error", "0.001"], stdout=subprocess.DEVNULL)
 staging = os.path.join(work, f".cornell.bake.staging-{slow.pid}")
 deadline = time.monotonic() + 60
 while not os.path.isdir(staging) and time.monotonic() < deadline and slow.poll() is None:

@@ -18,12 +18,12 @@ shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 scene = os.path.join(source, "examples/cornell-box/cornell-box.gltf")
 out = os.path.join(work, "cornell.sweep")
-subprocess.run([walkrad, "sweep", scene, "-o", out, "-q", "--epsilons", "1e-2,1e-4", "--element-sizes", "0.12,0.06",
+subprocess.run([walkrad, "sweep", scene, "-o", out, "-q", "--errors", "1,0.1", "--element-sizes", "0.12,0.06",
                 "--points", "256", "--samples", "4096", "--image-width", "16", "--image-samples", "256"], check=True,
                stdout=subprocess.DEVNULL)
 
 failures = []
-FIELDS = ["method", "epsilon", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays", "triangles",
+FIELDS = ["method", "error", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays", "triangles",
           "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max", "max_weighted", "bias", "image_pixels", "image_rms",
           "image_rms_weighted", "reference_ci_rms", "reference_ci_rms_weighted", "reference_image_ci_rms",
           "absorbed_over_emitted", "t_read", "t_prepare", "t_solve", "t_mesh", "t_write"]
@@ -39,7 +39,7 @@ for r in rows:
         if not float(r[c]) > 0:
             failures.append(f"{r['method']}: {c} = {r[c]}, expected > 0")
 
-for method, setting in [("classic", "element_size"), ("hierarchical", "epsilon"), ("importance", "epsilon")]:
+for method, setting in [("classic", "element_size"), ("hierarchical", "error"), ("importance", "error")]:
     runs = sorted((r for r in rows if r["method"] == method), key=lambda r: -float(r[setting]))  # coarse first
     if len(runs) != 2:
         failures.append(f"{method}: {len(runs)} runs")
@@ -56,7 +56,7 @@ for method, setting in [("classic", "element_size"), ("hierarchical", "epsilon")
 doc = json.load(open(os.path.join(out, "sweep.json")))
 if len(doc["runs"]) != 6 or doc["reference"]["samples"] != 4096:
     failures.append("sweep.json does not hold the runs and the reference settings")
-for f in ["error_vs_time.png", "cost_vs_epsilon.png", "report.md", "reference-view-0.png", "reference-points.csv"]:
+for f in ["error_vs_time.png", "cost_vs_error.png", "report.md", "reference-view-0.png", "reference-points.csv"]:
     if not os.path.getsize(os.path.join(out, f)) > 0:
         failures.append(f"{f} is missing or empty")
 if os.path.exists(os.path.join(out, "bakes")):

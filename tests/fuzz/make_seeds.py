@@ -163,5 +163,5 @@ manifest = {"format": "walkrad-bake", "version": 1, "tool": "walkrad 0.1.0",
                         "triangles": 2, "bytes": 1024}],
             "viewpoints": [{"name": "v", "position": [0, 0, 2], "forward": [0, 0, -1], "up": [0, 1, 0],
                             "yfov": 0.8, "aspect": 1.5}],
-            "settings": {"method": "hierarchical", "epsilon": 1e-5}}
+            "settings": {"method": "hierarchical", "error": 0.1}}
 write("manifest", "manifest.json", json.dumps(manifest, indent=1))

@@ -108,7 +108,8 @@ inline Solution solve_classic(const Scene& input, double element_size, bool acce
   return s;
 }
 
-inline Solution solve_hierarchy(const Scene& input, double epsilon, double tolerance = 1e-7, bool accelerate = true) {
+inline Solution solve_hierarchy(const Scene& input, double error = HierarchicalSettings{}.error, double tolerance = 1e-7,
+                                bool accelerate = true) {
   Solution s;
   ContactSplitStats split;
   s.scene = split_contacts(input, split);
@@ -116,7 +117,7 @@ inline Solution solve_hierarchy(const Scene& input, double epsilon, double toler
   const ClusterTree tree = build_cluster_tree(s.scene);
   Hierarchy h(s.scene, tree);
   HierarchicalSettings settings;
-  settings.epsilon = epsilon;
+  settings.error = error;
   settings.tolerance = tolerance;
   settings.accelerate = accelerate;
   // As a bake does (effect plan): a closed scene balances its transport, a convex one casts no ray.

@@ -86,7 +86,7 @@ TEST(Furnace099, PlainGaussSeidelIsFarSlower) {
 // 611 sweeps, RMS 0.67%, worst leaf 3.7%.
 TEST(Furnace099, HierarchicalIsExactInBoundedIterations) {
   const Vec3 e(1.0, 2.0, 0.5);
-  const Solution s = solve_both_ways([&] { return solve_hierarchy(furnace(0.99, e), 1e-2); });
+  const Solution s = solve_both_ways([&] { return solve_hierarchy(furnace(0.99, e)); });
   double worst = 0;
   for (size_t i = 0; i < s.B.size(); ++i)
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(s.B[i][c] - 100 * e[c]) / (100 * e[c]));
@@ -99,8 +99,8 @@ TEST(Furnace099, HierarchicalIsExactInBoundedIterations) {
 }
 
 TEST(Furnace099, HierarchicalWithoutCorrectionIsFarSlower) {
-  const Solution plain = solve_hierarchy(furnace(0.99, {1, 1, 1}), 1e-2, 1e-7, /*accelerate=*/false);
-  const Solution fast = solve_hierarchy(furnace(0.99, {1, 1, 1}), 1e-2);
+  const Solution plain = solve_hierarchy(furnace(0.99, {1, 1, 1}), HierarchicalSettings{}.error, 1e-7, /*accelerate=*/false);
+  const Solution fast = solve_hierarchy(furnace(0.99, {1, 1, 1}));
   std::printf("hierarchical furnace ρ=0.99: %d sweeps plain, %d corrected\n", plain.iterations, fast.iterations);
   EXPECT_GT(plain.iterations, 10 * fast.iterations);
 }
@@ -123,18 +123,27 @@ struct Placement {
 
 class ScaleAndOffset : public ::testing::TestWithParam<Placement> {};
 
-// The moved solution's values in the reference's element order: each element matched to the one
-// facing the same way whose centroid, mapped back, is nearest (contact cuts of equal length may come
-// out in another order, and a piece may start at another corner).
+// The moved solution's values in the reference's element order: each element matched to the one of
+// the same material facing the same way whose centroid, mapped back, is nearest (contact cuts of
+// equal length may come out in another order, and a piece may start at another corner; a lamp lying
+// on its ceiling shares the ceiling's centroids).
 std::vector<Vec3> matched(const Solution& ref, const Solution& moved, double scale, Vec3 offset) {
-  std::vector<Vec3> out;
+  std::vector<Vec3> out, moved_normal, moved_centre;
+  std::vector<uint32_t> moved_material;
+  for (size_t k = 0; k < moved.B.size(); ++k) {
+    const Polygon& p = moved.scene.polygons[moved.polygon[k]];
+    moved_normal.push_back(polygon_normal(p));
+    moved_material.push_back(p.material);
+    moved_centre.push_back((moved.centroid[k] - offset) / scale);
+  }
   for (size_t i = 0; i < ref.B.size(); ++i) {
     size_t best = 0;
     double best_d = INFINITY;
+    const Polygon& rp = ref.scene.polygons[ref.polygon[i]];
+    const Vec3 nr = polygon_normal(rp);
     for (size_t k = 0; k < moved.B.size(); ++k) {
-      const Vec3 nr = polygon_normal(ref.scene.polygons[ref.polygon[i]]), nm = polygon_normal(moved.scene.polygons[moved.polygon[k]]);
-      if (dot(nr, nm) < 0.99) continue;  // back to back faces share centroids
-      const Vec3 d = (moved.centroid[k] - offset) / scale - ref.centroid[i];
+      if (dot(nr, moved_normal[k]) < 0.99 || moved_material[k] != rp.material) continue;  // back to back faces share centroids
+      const Vec3 d = moved_centre[k] - ref.centroid[i];
       if (dot(d, d) < best_d) { best_d = dot(d, d); best = k; }
     }
     out.push_back(moved.B[best]);
@@ -188,8 +197,8 @@ class HierarchicalScaleAndOffset : public ::testing::TestWithParam<Placement> {}
 
 TEST_P(HierarchicalScaleAndOffset, GivesTheSameRadiosity) {
   const Placement p = GetParam();
-  const Solution ref = solve_hierarchy(lit_room(), 1e-3);
-  const Solution moved = solve_both_ways([&] { return solve_hierarchy(transformed(lit_room(), p.scale, p.offset), 1e-3); });
+  const Solution ref = solve_hierarchy(lit_room());
+  const Solution moved = solve_both_ways([&] { return solve_hierarchy(transformed(lit_room(), p.scale, p.offset)); });
   ASSERT_EQ(ref.B.size(), moved.B.size());
   const double worst = largest_difference(ref.B, matched(ref, moved, p.scale, p.offset), 1e-2 * largest(ref.B));
   std::printf("hierarchical ×%g +%g: largest relative difference %.2e over %zu leaves\n", p.scale, length(p.offset), worst,
@@ -248,7 +257,7 @@ TEST(Contacts, ClassicNoLeakNoNegative) {
 }
 
 TEST(Contacts, HierarchicalNoLeakNoNegative) {
-  const Solution s = solve_both_ways([] { return solve_hierarchy(junctions(), 1e-4); });
+  const Solution s = solve_both_ways([] { return solve_hierarchy(junctions()); });
   expect_sane(s, 10 / (1 - 0.8));
   std::printf("hierarchical junctions: dark room max B %.3e, imbalance %.2e, %d sweeps\n", largest_in_dark_room(s),
               s.audit.imbalance(), s.iterations);
@@ -304,7 +313,7 @@ TEST(SliversAndTinyElements, ClassicIsExact) {
 // Closed, so balanced like the furnace: every leaf, the 4e-8 m² one and the slivers included, within
 // 1e-3 of E / (1 − ρ) (measured 1e-8; 10.1% at corner leaves before the balance).
 TEST(SliversAndTinyElements, HierarchicalIsExact) {
-  const Solution s = solve_both_ways([] { return solve_hierarchy(cut_furnace(), 1e-3); });
+  const Solution s = solve_both_ways([] { return solve_hierarchy(cut_furnace()); });
   expect_sane(s, 10.0 * 1.5);
   double worst = 0;
   for (size_t i = 0; i < s.B.size(); ++i) worst = std::max(worst, std::fabs(s.B[i].x - 10) / 10);
@@ -338,7 +347,7 @@ TEST(TinyBrightEmitter, ClassicConservesEnergy) {
 
 // Closed, so its transport is balanced (link_transport.h): measured Σ A B = 2.000000, audit 3e-15.
 TEST(TinyBrightEmitter, HierarchicalConservesEnergy) {
-  const Solution s = solve_both_ways([] { return solve_hierarchy(tiny_lamp(), 1e-3); });
+  const Solution s = solve_both_ways([] { return solve_hierarchy(tiny_lamp()); });
   expect_sane(s, 1e6 / (1 - 0.5));
   EXPECT_LE(s.audit.imbalance(), 1e-4);
   expect_power(s, 1e-4);
@@ -362,7 +371,6 @@ nlohmann::json bake_report(const std::string& method) {
   s.output = (dir / method).string();
   s.method = method;
   s.element_size = 0.5;
-  s.epsilon = 1e-2;
   s.progress = false;
   s.exposure = 1.0;
   bake(s);
@@ -408,7 +416,6 @@ class BadGeometry : public test::TempDirTest {
     BakeSettings s;
     s.scene = scene;
     s.output = (dir_ / out).string();
-    s.epsilon = 1e-3;
     s.progress = false;
     s.exposure = 1.0;
     return s;

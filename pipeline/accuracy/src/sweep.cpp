@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -16,6 +17,7 @@
 #include "walkrad/formats/walkthrough.h"
 #include "walkrad/accuracy/error_measures.h"
 #include "walkrad/accuracy/bake_process.h"
+#include "walkrad/accuracy/reference_cache.h"
 #include "walkrad/accuracy/reference_set.h"
 #include "walkrad/scene/scene_cleanup.h"
 #include "walkrad/core/staged_output.h"
@@ -39,7 +41,7 @@ std::string number(double v) {
 
 struct Run {
   std::string name, method;
-  double epsilon = NAN, element_size = NAN;
+  double error = NAN, element_size = NAN;
   std::vector<std::string> args;
 };
 
@@ -52,8 +54,8 @@ std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
         for (double d : {10.0, 15.0, 21.0, 30.0}) sizes.push_back(diagonal / d);
       for (double h : sizes) runs.push_back({"classic-" + number(h), method, NAN, h, {"--method", "classic", "--element-size", number(h)}});
     } else if (method == "hierarchical" || method == "importance") {
-      for (double e : s.epsilons) {
-        Run r{method + "-" + number(e), method, e, NAN, {"--method", "hierarchical", "--epsilon", number(e)}};
+      for (double e : s.errors) {
+        Run r{method + "-" + number(e), method, e, NAN, {"--method", "hierarchical", "--error", number(e)}};
         if (method == "hierarchical") r.args.push_back("--view-independent");
         if (s.min_area > 0) r.args.insert(r.args.end(), {"--min-area", number(s.min_area)});
         runs.push_back(r);
@@ -91,6 +93,64 @@ json worst_point(const ReferenceSet& ref, const std::vector<double>& bake) {
           {"standard_error", ref.standard_error[worst]}, {"bake", bake[worst]}};
 }
 
+// The bake's own estimate of the error the sweep measures as rms_weighted (report.json), or null.
+json estimated_error(const json& report) {
+  if (!report.contains("solver") || !report["solver"].contains("estimated_error")) return nullptr;
+  return report["solver"]["estimated_error"].value("overall", json(nullptr));
+}
+
+// Surfaces, for the per-surface errors: a reference point belongs to the plane of the polygon its
+// ray meets (material, the normal's main axis, the plane's offset to 1% of the diagonal), so that a
+// box's walls, floor and ceiling are told apart. Empty where the ray meets nothing.
+std::vector<std::string> surface_names(const Scene& scene, const RayScene& rays, const ReferenceSet& ref, double diagonal) {
+  std::vector<std::string> out(ref.rays.size());
+  for (size_t k = 0; k < ref.rays.size(); ++k) {
+    if (std::isnan(ref.luminance[k])) continue;
+    const RayScene::Hit hit = rays.intersect(ref.rays[k].origin, ref.rays[k].direction);
+    if (!hit.hit) continue;
+    const Polygon& p = scene.polygons[hit.polygon];
+    const Vec3 n = polygon_normal(p);
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::fabs(n[a]) > std::fabs(n[axis])) axis = a;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s, facing %c%c, at %.2f", scene.materials[p.material].name.c_str(), n[axis] > 0 ? '+' : '-',
+                  "xyz"[axis], std::round(100 * dot(n, p.v[0]) / diagonal) / 100 * diagonal);
+    out[k] = text;
+  }
+  return out;
+}
+
+// The error on each surface that holds at least 1% of the weight, heaviest first.
+json surface_errors(const std::vector<std::string>& surface, const std::vector<double>& bake, const ReferenceSet& ref) {
+  std::map<std::string, std::vector<size_t>> groups;
+  double total = 0;
+  for (size_t k = 0; k < surface.size(); ++k)
+    if (!surface[k].empty() && !std::isnan(bake[k])) {
+      groups[surface[k]].push_back(k);
+      total += ref.weight[k];
+    }
+  std::vector<std::pair<double, json>> rows;
+  for (const auto& [name, index] : groups) {
+    std::vector<double> a, r, w;
+    for (size_t k : index) {
+      a.push_back(bake[k]);
+      r.push_back(ref.luminance[k]);
+      w.push_back(ref.weight[k]);
+    }
+    double share = 0;
+    for (double x : w) share += x / total;
+    if (share < 0.01) continue;
+    const ErrorMeasures e = relative_errors(a, r, w);
+    rows.push_back({share, {{"surface", name}, {"weight_share", share}, {"points", e.points}, {"rms_weighted", e.rms_weighted},
+                            {"bias", e.bias}}});
+  }
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  json out = json::array();
+  for (auto& row : rows) out.push_back(std::move(row.second));
+  return out;
+}
+
 json or_null(size_t points, double value) { return points ? json(value) : json(nullptr); }
 
 json error_json(const ErrorMeasures& e) {
@@ -99,8 +159,8 @@ json error_json(const ErrorMeasures& e) {
 }
 
 // One row of sweep.csv per run, from the run's JSON record.
-const char* const kColumns[] = {"method", "epsilon", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays",
-                                "triangles", "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max",
+const char* const kColumns[] = {"method", "error", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays",
+                                "triangles", "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "estimated_error", "max",
                                 "max_weighted", "bias", "image_pixels", "image_rms", "image_rms_weighted", "reference_ci_rms",
                                 "reference_ci_rms_weighted", "reference_image_ci_rms", "absorbed_over_emitted"};
 
@@ -154,22 +214,35 @@ SweepSummary run_sweep(const SweepSettings& s) {
   const RayScene rays(scene);
   const ReferenceTracer tracer(scene, rays);
   const size_t view_count = std::min(views.size(), std::max<size_t>(1, s.max_views));
-  log("reference: " + std::to_string(s.points) + " points × " + std::to_string(s.samples) + " paths");
-  const ReferenceSet points = trace_reference(scene, rays, tracer, stratified_view_rays(views, view_count, s.points / view_count, s.seed),
-                                              s.samples, s.seed);
-  ReferenceSet image;
+  ReferenceSet points, image;
   json images = json::array();
-  if (s.image_width > 0) {
-    std::vector<ViewRay> pixels;
+  std::vector<ViewRay> pixels;
+  for (uint32_t v : s.image_width > 0 ? spread_views(views.size(), s.image_views) : std::vector<uint32_t>{}) {
     int height = 0;
-    for (uint32_t v : spread_views(views.size(), s.image_views)) {
-      const std::vector<ViewRay> px = image_rays(views, v, s.image_width, height);
-      pixels.insert(pixels.end(), px.begin(), px.end());
-      images.push_back({{"view", v}, {"name", views[v].name}, {"width", s.image_width}, {"height", height},
-                        {"file", "reference-view-" + std::to_string(v) + ".png"}});
+    const std::vector<ViewRay> px = image_rays(views, v, s.image_width, height);
+    pixels.insert(pixels.end(), px.begin(), px.end());
+    images.push_back({{"view", v}, {"name", views[v].name}, {"width", s.image_width}, {"height", height},
+                      {"file", "reference-view-" + std::to_string(v) + ".png"}});
+  }
+  const std::string key =
+      reference_key(s.scene, s.views, "points " + std::to_string(s.points) + " over " + std::to_string(view_count) + " views, " +
+                                          std::to_string(s.samples) + " paths, images " + std::to_string(s.image_width) + " px × " +
+                                          std::to_string(s.image_views) + " views × " + std::to_string(s.image_samples) +
+                                          " paths, seed " + std::to_string(s.seed));
+  if (!s.reference.empty()) {
+    log("reference: reused from " + s.reference);
+    load_reference(s.reference + "/reference.bin", key, points, image);
+  } else {
+    log("reference: " + std::to_string(s.points) + " points × " + std::to_string(s.samples) + " paths");
+    points = trace_reference(scene, rays, tracer, stratified_view_rays(views, view_count, s.points / view_count, s.seed),
+                             s.samples, s.seed);
+    if (!pixels.empty()) {
+      log("reference images: " + std::to_string(pixels.size()) + " pixels × " + std::to_string(s.image_samples) + " paths");
+      image = trace_reference(scene, rays, tracer, std::move(pixels), s.image_samples, s.seed + 1);
     }
-    log("reference images: " + std::to_string(pixels.size()) + " pixels × " + std::to_string(s.image_samples) + " paths");
-    image = trace_reference(scene, rays, tracer, std::move(pixels), s.image_samples, s.seed + 1);
+  }
+  save_reference(out.path("reference.bin"), key, points, image);
+  {
     size_t first = 0;
     for (const json& im : images) {
       const size_t count = size_t(im["width"].get<int>()) * im["height"].get<size_t>();
@@ -195,54 +268,71 @@ SweepSummary run_sweep(const SweepSettings& s) {
     if (!csv) throw OutputError(out.path("reference-points.csv") + ": cannot write");
   }
 
+  const std::vector<std::string> surfaces = surface_names(scene, rays, points, diagonal);
+
   // The bakes, one child process each.
   const std::string exe = s.executable.empty() ? "/proc/self/exe" : s.executable;
   const double tolerance = 1e-4 * diagonal;
   fs::create_directories(out.path("bakes"));
   json records = json::array();
-  for (const Run& run : runs) {
-    const std::string dir = out.path("bakes/" + run.name);
-    std::vector<std::string> args{"bake", s.scene, "-o", dir, "-q", "--exposure", "1"};
-    if (!s.views.empty()) args.insert(args.end(), {"--views", s.views});
-    if (s.threads > 0) args.insert(args.end(), {"--threads", std::to_string(s.threads)});
-    args.insert(args.end(), run.args.begin(), run.args.end());
-    const std::string log_path = out.path("bakes/" + run.name + ".log");
-    const ProcessRun p = run_process(exe, args, log_path);
-    if (p.exit_code >= kExitBadArguments && p.exit_code <= kExitLimitReached)  // the bake's own refusal: keep its code
-      throw InputError(s.scene, "run " + run.name, "the bake failed: " + last_line(log_path), ExitCode(p.exit_code));
-    if (p.exit_code != 0)
-      throw std::runtime_error("the bake of run " + run.name + " failed (exit code " + std::to_string(p.exit_code) +
-                               "): " + last_line(log_path));
+  std::vector<Run> all = runs;
+  for (const std::string& dir : s.measure) {  // bakes made elsewhere: measured, not timed
+    const std::string name = fs::path(dir).filename().string();
+    all.push_back({"measured-" + name, "measured", NAN, NAN, {dir}});
+  }
+  std::vector<std::vector<double>> per_point;  // each run's luminance at every sample point, for bake-points.csv
+  for (const Run& run : all) {
+    const bool measured = run.method == "measured";
+    const std::string dir = measured ? run.args[0] : out.path("bakes/" + run.name);
+    ProcessRun p;
+    if (!measured) {
+      std::vector<std::string> args{"bake", s.scene, "-o", dir, "-q", "--exposure", "1"};
+      if (!s.views.empty()) args.insert(args.end(), {"--views", s.views});
+      if (s.threads > 0) args.insert(args.end(), {"--threads", std::to_string(s.threads)});
+      args.insert(args.end(), run.args.begin(), run.args.end());
+      const std::string log_path = out.path("bakes/" + run.name + ".log");
+      p = run_process(exe, args, log_path);
+      if (p.exit_code >= kExitBadArguments && p.exit_code <= kExitLimitReached)  // the bake's own refusal: keep its code
+        throw InputError(s.scene, "run " + run.name, "the bake failed: " + last_line(log_path), ExitCode(p.exit_code));
+      if (p.exit_code != 0)
+        throw std::runtime_error("the bake of run " + run.name + " failed (exit code " + std::to_string(p.exit_code) +
+                                 "): " + last_line(log_path));
+    }
     std::ifstream report_file(dir + "/report.json");
+    if (!report_file) throw InputError(dir, "", "no report.json: not a bake folder");
     const json report = json::parse(report_file);
+    if (measured) p.wall_seconds = report.value("total_seconds", 0.0);
     const json& counts = report.at("counts");
     const BakeSampler bake = BakeSampler::open(dir);
     const std::vector<double> at_points = sample_bake(bake, points, tolerance);
     const ErrorMeasures e = relative_errors(at_points, points.luminance, points.weight);
+    per_point.push_back(at_points);
     const ErrorMeasures ie = relative_errors(sample_bake(bake, image, tolerance), image.luminance, image.weight);
     json phases = json::object();
     for (const json& ph : report.at("phases")) phases[ph.at("name").get<std::string>()] = ph.at("seconds");
     json rec = {{"name", run.name}, {"method", run.method},
-                {"epsilon", std::isnan(run.epsilon) ? json(nullptr) : json(run.epsilon)},
+                {"error", std::isnan(run.error) ? json(nullptr) : json(run.error)},
                 {"element_size", std::isnan(run.element_size) ? json(nullptr) : json(run.element_size)},
                 {"args", run.args}, {"seconds", p.wall_seconds}, {"cpu_seconds", p.cpu_seconds}, {"phases", phases},
                 {"elements", counts.value("elements", uint64_t(0))},
                 {"links", counts.contains("links") ? counts.at("links") : counts.value("form_factor_pairs", json(0))},
                 {"rays", counts.value("visibility_rays", uint64_t(0))}, {"triangles", counts.value("triangles", uint64_t(0))},
                 {"peak_rss_mib", p.peak_rss_mib}, {"output_bytes", folder_bytes(dir)},
-                {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted}, {"max", e.max},
+                {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted},
+                {"estimated_error", estimated_error(report)}, {"max", e.max},
                 {"max_weighted", e.max_weighted}, {"bias", e.bias}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
                 {"image_rms_weighted", or_null(ie.points, ie.rms_weighted)}, {"reference_ci_rms", ci.rms},
                 {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", or_null(image_ci.points, image_ci.rms)},
                 {"absorbed_over_emitted", sum3(report.at("energy").at("absorbed_w")) / sum3(report.at("energy").at("emitted_w"))},
-                {"worst_point", worst_point(points, at_points)}, {"counts", counts}};
+                {"worst_point", worst_point(points, at_points)}, {"surfaces", surface_errors(surfaces, at_points, points)},
+                {"counts", counts}};
     records.push_back(rec);
     char line[256];
     std::snprintf(line, sizeof line, "%s: %.2f s, %.0f MiB, %s links, error %.2f%% (weighted %.2f%%, image %.2f%%)",
                   run.name.c_str(), p.wall_seconds, p.peak_rss_mib, rec["links"].dump().c_str(), 100 * e.rms,
                   100 * e.rms_weighted, 100 * ie.rms_weighted);
     log(line);
-    if (!s.keep_bakes) fs::remove_all(dir);
+    if (!s.keep_bakes && !measured) fs::remove_all(dir);
   }
 
   json doc = {{"format", "walkrad-sweep"}, {"version", 1}, {"command", s.command}, {"scene", s.scene}, {"views", s.views},
@@ -255,6 +345,18 @@ SweepSummary run_sweep(const SweepSettings& s) {
                              {"seed", s.seed}}},
               {"runs", records}};
   write_text(out.path("sweep.json"), doc.dump(2) + "\n");
+  {  // every run at every sample point, beside the reference, for a reader who wants to look closer
+    std::ofstream csv(out.path("bake-points.csv"));
+    csv << "point,surface,reference";
+    for (const Run& run : all) csv << ',' << run.name;
+    csv << '\n';
+    for (size_t k = 0; k < points.rays.size(); ++k) {
+      csv << k << ",\"" << surfaces[k] << "\"," << number(points.luminance[k]);
+      for (const std::vector<double>& v : per_point) csv << ',' << number(v[k]);
+      csv << '\n';
+    }
+    if (!csv) throw OutputError(out.path("bake-points.csv") + ": cannot write");
+  }
   write_csv(out.path("sweep.csv"), records);
   if (!s.keep_bakes) fs::remove_all(out.path("bakes"));
 

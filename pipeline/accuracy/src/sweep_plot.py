@@ -16,8 +16,8 @@ folder = sys.argv[1] if len(sys.argv) > 1 else "."
 doc = json.load(open(os.path.join(folder, "sweep.json")))
 runs = doc["runs"]
 ref = doc["reference"]
-LABELS = {"classic": "classic (element size)", "hierarchical": "hierarchical, view-independent (ε)",
-          "importance": "hierarchical, importance-driven (ε)"}
+LABELS = {"classic": "classic (element size)", "hierarchical": "hierarchical, view-independent (requested error)",
+          "importance": "hierarchical, importance-driven (requested error)"}
 STYLE = {"classic": ("tab:gray", "s"), "hierarchical": ("tab:blue", "o"), "importance": ("tab:red", "^")}
 methods = [m for m in ["classic", "hierarchical", "importance"] if any(r["method"] == m for r in runs)]
 
@@ -55,7 +55,7 @@ for ax, (key, ci, title) in zip(axes, panels):
         colour, marker = STYLE[m]
         ax.plot([r["cpu_seconds"] for r in rs], [pct(r[key]) for r in rs], marker=marker, color=colour, label=LABELS[m])
         for r in rs:
-            tag = f"{r['epsilon']:g}" if r["epsilon"] is not None else f"{r['element_size']:.3g} m"
+            tag = f"{r['error']:g}" if r["error"] is not None else f"{r['element_size']:.3g} m"
             ax.annotate(tag, (r["cpu_seconds"], pct(r[key])), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.axhspan(1e-3, pct(ci), color="tab:green", alpha=0.15, label="reference's 95% error bar")
     ax.set_xscale("log")
@@ -73,19 +73,19 @@ fig.suptitle(os.path.basename(doc["scene"]) + ": error against time", fontsize=1
 fig.tight_layout()
 fig.savefig(os.path.join(folder, "error_vs_time.png"), dpi=90)
 
-# Links and memory against ε (hierarchical methods) and against element size (classic).
+# Links and memory against the requested error (hierarchical methods) and against element size (classic).
 fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
 for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axes[1], "peak_rss_mib", "peak memory (MiB)")]:
     for m in methods:
         if m == "classic":
             continue
-        rs = sorted(of(m), key=lambda r: r["epsilon"])
+        rs = sorted(of(m), key=lambda r: r["error"])
         colour, marker = STYLE[m]
-        ax.plot([r["epsilon"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS[m])
+        ax.plot([r["error"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS[m])
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.invert_xaxis()
-    ax.set_xlabel("ε (smaller: finer)")
+    ax.set_xlabel("requested error (smaller: finer)")
     ax.set_ylabel(label)
     ax.grid(True, which="both", alpha=0.3)
     if key == "peak_rss_mib":
@@ -103,13 +103,13 @@ for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axe
 axes[0].legend(fontsize=8, loc="upper left")
 fig.suptitle(os.path.basename(doc["scene"]) + ": links and memory", fontsize=11)
 fig.tight_layout()
-fig.savefig(os.path.join(folder, "cost_vs_epsilon.png"), dpi=90)
+fig.savefig(os.path.join(folder, "cost_vs_error.png"), dpi=90)
 
 
 def time_at(method, key, error, clock):
-    """The time `method` needs for `error`: log-log interpolation between its two runs (by ε) whose errors
+    """The time `method` needs for `error`: log-log interpolation between its two runs (by requested error) whose errors
     bracket it; None when no two runs do."""
-    rs = sorted(of(method), key=lambda r: -r["epsilon"])
+    rs = sorted(of(method), key=lambda r: -r["error"])
     for a, b in zip(rs, rs[1:]):
         if min(a[key], b[key]) <= error <= max(a[key], b[key]) and a[key] != b[key]:
             f = math.log(error / a[key]) / math.log(b[key] / a[key])
@@ -127,14 +127,14 @@ lines = [f"# Accuracy sweep: {os.path.basename(doc['scene'])}", "",
          f"{percent(ref['image_ci']['rms'])}.", ""]
 if doc.get("unavailable"):
     lines += ["Not measured: " + "; ".join(doc["unavailable"]) + ".", ""]
-lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | output KiB | RMS | RMS (w) | max | max (w) | bias (w) | image RMS (w) | absorbed/emitted |",
-          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+lines += ["| run | time (s) | CPU (s) | elements | links | rays | peak MiB | output KiB | RMS | RMS (w) | estimated | max | max (w) | bias (w) | image RMS (w) | absorbed/emitted |",
+          "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 for r in runs:
     lines.append(f"| {r['name']} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['elements']} | {r['links']} | {r['rays']} | "
-                 f"{r['peak_rss_mib']:.0f} | {r['output_bytes'] / 1024:.0f} | {pct(r['rms']):.2f}% | {pct(r['rms_weighted']):.2f}% | "
+                 f"{r['peak_rss_mib']:.0f} | {r['output_bytes'] / 1024:.0f} | {pct(r['rms']):.2f}% | {pct(r['rms_weighted']):.2f}% | {percent(r['estimated_error'])} | "
                  f"{pct(r['max']):.1f}% | {pct(r['max_weighted']):.1f}% | {bias(r)} | {percent(r['image_rms_weighted'])} | "
                  f"{r['absorbed_over_emitted']:.3f} |")
-lines += ["", "![error against time](error_vs_time.png)", "", "![links and memory](cost_vs_epsilon.png)", ""]
+lines += ["", "![error against time](error_vs_time.png)", "", "![links and memory](cost_vs_error.png)", ""]
 if "importance" in methods and "hierarchical" in methods:
     lines += ["Equal error in what the walkthrough sees (importance-weighted RMS at the sample points): for each "
               "importance-driven run, the time the view-independent method needs for the same error, interpolated "
@@ -142,7 +142,7 @@ if "importance" in methods and "hierarchical" in methods:
               "(user + system, steadier on a shared machine).", "",
               "| importance run | error | wall (s) | CPU (s) | view-independent wall (s) | CPU (s) | wall ratio | CPU ratio |",
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
-    for r in sorted(of("importance"), key=lambda r: -r["epsilon"]):
+    for r in sorted(of("importance"), key=lambda r: -r["error"]):
         wall = time_at("hierarchical", "rms_weighted", r["rms_weighted"], "seconds")
         cpu = time_at("hierarchical", "rms_weighted", r["rms_weighted"], "cpu_seconds")
         if wall is None:

@@ -45,6 +45,39 @@ TEST_P(ReferenceFurnace, AgreesWithEOverOneMinusRhoWithinItsInterval) {
 
 INSTANTIATE_TEST_SUITE_P(Reflectances, ReferenceFurnace, ::testing::Values(0.5, 0.8));
 
+// Two furnaces side by side whose shared wall is two coincident polygons back to back (a building's
+// zero-thickness wall): the lit box is still exactly E / (1 − ρ) and the dark one black. Were a ray
+// from the lit box to meet the dark box's polygon (a back face, black), the lit box would read low.
+TEST(ReferenceFurnace, BackToBackWallsKeepEachBoxExact) {
+  const double rho = 0.5;
+  const Vec3 e(1.0, 1.0, 1.0);
+  Scene s = test::closed_box(1.0, {rho, rho, rho}, e);
+  const size_t lit = s.polygons.size();
+  s.materials.push_back({"dark", {rho, rho, rho}, {}});
+  for (Polygon p : test::closed_box(1.0, {rho, rho, rho}, e).polygons) {
+    for (Vec3& v : p.v) v.x += 1.0;  // its x = 0 wall lies on the lit box's x = 1 wall, facing away
+    p.material = 1;
+    s.polygons.push_back(p);
+  }
+  const RayScene rays(s);
+  const ReferenceTracer tracer(s, rays);
+  std::vector<SurfacePoint> points;
+  for (uint32_t p = 0; p < s.polygons.size(); ++p) points.push_back({p, polygon_centroid(s.polygons[p])});
+  ReferenceSettings settings;
+  settings.samples = 4096;
+  uint64_t cast = 0;
+  const std::vector<RadiosityEstimate> est = tracer.estimate(points, settings, cast);
+  const double exact = e.x / (1.0 - rho);
+  for (size_t k = 0; k < est.size(); ++k) {
+    if (k < lit) {
+      EXPECT_NEAR(est[k].B.x, exact, kSigmas * est[k].standard_error.x + 1e-9) << "lit box, face " << k;
+      EXPECT_LT(est[k].standard_error.x, 0.02 * exact);
+    } else {
+      EXPECT_EQ(est[k].B.x, 0.0) << "dark box, face " << k - lit;
+    }
+  }
+}
+
 // Point-to-rectangle form factor, the point below a corner of an a × b rectangle at height c, parallel
 // (Howell's catalogue, B-3): F = 1/2π [A/√(1+A²) atan(B/√(1+A²)) + B/√(1+B²) atan(A/√(1+B²))].
 double corner_form_factor(double a, double b, double c) {

@@ -28,13 +28,18 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("-o,--output", bs.output, "output folder (default: <scene name>.bake)");
   bake_cmd->add_option("--method", bs.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
       ->capture_default_str();
-  bake_cmd->add_option("--epsilon", bs.epsilon, "hierarchical: refinement threshold, relative to the emitted power")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+  auto* error_opt = bake_cmd->add_option("--error", bs.error,
+                       "hierarchical: refinement tolerance, relative to what each surface shows where the walkthrough looks "
+                       "(docs/accuracy.md: the error it delivers)")
+      ->check(CLI::Range(1e-3, 1.0))->capture_default_str();
+  std::string quality;
+  bake_cmd->add_option("--quality", quality, "hierarchical: draft, medium, high (the default) or final: a preset --error")
+      ->check(CLI::IsMember({"draft", "medium", "high", "final"}))->excludes(error_opt);
   bake_cmd->add_option("--solver", bs.solver, "hierarchical: gauss-seidel or jacobi")
       ->check(CLI::IsMember({"gauss-seidel", "jacobi"}))->capture_default_str();
   bake_cmd->add_flag("--view-independent", bs.view_independent,
-                     "hierarchical: refine for every surface alike (BF oracle), not for what the viewpoints see");
-  bake_cmd->add_option("--min-area", bs.min_area, "hierarchical: smallest element in m² (default: (diagonal/256)²)")
+                     "hierarchical: hold every surface to the error alike, not only what the viewpoints see");
+  bake_cmd->add_option("--min-area", bs.min_area, "hierarchical: smallest element in m² (default: the median polygon's side / 128, squared)")
       ->check(CLI::NonNegativeNumber);
   bake_cmd->add_option("--element-size", bs.element_size, "classic: element edge length in metres (default: scene diagonal / 30)")
       ->check(CLI::NonNegativeNumber);
@@ -105,14 +110,14 @@ int main(int argc, char** argv) {
                           "write the whole surface (positions, normals, colours, radiosity, indices) as JSON to this file");
   // sweep: what accuracy costs (docs/accuracy.md).
   SweepSettings ss;
-  CLI::App* sweep_cmd = app.add_subcommand("sweep", "bake over a range of ε and element sizes; error against a path-traced reference");
+  CLI::App* sweep_cmd = app.add_subcommand("sweep", "bake over a range of requested errors and element sizes; error against a path-traced reference");
   sweep_cmd->add_option("scene", ss.scene, "scene file (.gltf, .glb, .mgf)")->required();
   sweep_cmd->add_option("--views", ss.views, "walkthrough JSON (default: the scene's cameras)");
   sweep_cmd->add_option("-o,--output", ss.output, "output folder (default: <scene name>.sweep)");
   sweep_cmd->add_option("--methods", ss.methods, "classic, hierarchical (view-independent), importance")
       ->delimiter(',')->capture_default_str();
-  sweep_cmd->add_option("--epsilons", ss.epsilons, "ε values for the hierarchical methods")->delimiter(',')
-      ->check(CLI::PositiveNumber)->capture_default_str();
+  sweep_cmd->add_option("--errors", ss.errors, "requested errors (--error) for the hierarchical methods")->delimiter(',')
+      ->check(CLI::Range(1e-3, 1.0))->capture_default_str();
   sweep_cmd->add_option("--element-sizes", ss.element_sizes, "classic element sizes in metres (default: diagonal / 10, 15, 21, 30)")
       ->delimiter(',')->check(CLI::PositiveNumber);
   sweep_cmd->add_option("--min-area", ss.min_area, "hierarchical: smallest element in m² (default: the bake's)")
@@ -129,6 +134,9 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--image-samples", ss.image_samples, "reference paths per pixel")->check(CLI::Range(2, 10000000))
       ->capture_default_str();
   sweep_cmd->add_option("--seed", ss.seed, "reference random seed")->capture_default_str();
+  sweep_cmd->add_option("--measure", ss.measure, "also measure these bake folders (made elsewhere; not timed)")->delimiter(',');
+  sweep_cmd->add_option("--reference", ss.reference,
+                        "reuse the reference of an earlier sweep's folder (its reference.bin; same scene, walkthrough and reference settings)");
   sweep_cmd->add_option("--threads", ss.threads, "worker threads for the bakes and the reference (default: all cores)")
       ->check(CLI::Range(0, 1024));
   sweep_cmd->add_flag("--keep-bakes", ss.keep_bakes, "keep every bake folder under OUTPUT/bakes/");
@@ -147,6 +155,7 @@ int main(int argc, char** argv) {
     if (bake_cmd->parsed()) {
       bs.progress = !quiet;
       bs.compress = !no_compression;
+      if (!quality.empty()) bs.error = quality_error(quality);
       for (const std::string& e : effect_overrides) {
         const size_t eq = e.find('=');
         if (eq == std::string::npos) throw InputError("--effect", e, "expected NAME=on or NAME=off", kExitBadArguments);

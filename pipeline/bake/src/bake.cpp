@@ -83,11 +83,22 @@ void write_json(const std::string& path, const json& j) {
 }  // namespace
 
 json BakeSettings::to_json() const {
-  return {{"method", method},     {"solver", solver},       {"epsilon", epsilon},     {"view_independent", view_independent},     {"min_area", min_area},
+  return {{"method", method},     {"solver", solver},       {"error", error},     {"view_independent", view_independent},     {"min_area", min_area},
           {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
           {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
           {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
+}
+
+double quality_error(const std::string& quality) {
+  // The presets light bakers offer, as the refinement's tolerance relative to what each surface shows
+  // (docs/accuracy.md measures what each delivers: about a ninth of it on the Cornell box, a third on
+  // office-floor).
+  if (quality == "draft") return 0.4;
+  if (quality == "medium") return 0.2;
+  if (quality == "high") return 0.1;
+  if (quality == "final") return 0.05;
+  throw InputError("--quality", quality, "unknown quality (available: draft, medium, high, final)", kExitBadArguments);
 }
 
 BakeSummary bake(const BakeSettings& s) {
@@ -199,8 +210,8 @@ BakeSummary bake(const BakeSettings& s) {
   }
   uint64_t chunk_rays = 0;
   // Fine enough that a sliver of a chunk seen through a doorway is not missed (a runtime would leave it
-  // unloaded): up to 128² rays a view, about 4 million rays in all for long walkthroughs.
-  const int chunk_grid = std::clamp(int(std::sqrt(4.0e6 / double(std::max<size_t>(views.size(), 1)))), 32, 128);
+  // unloaded): up to 256² rays a view, about 16 million rays in all for long walkthroughs.
+  const int chunk_grid = std::clamp(int(std::sqrt(1.6e7 / double(std::max<size_t>(views.size(), 1)))), 32, 256);
   const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), chunk_grid, chunk_rays);
 
   phases.start("write");
@@ -232,6 +243,7 @@ BakeSummary bake(const BakeSettings& s) {
   counts["input_polygons"] = input.polygons.size();
   counts["polygons"] = scene.polygons.size();
   counts["contact_cuts"] = split_stats.cuts;
+  counts["covered_pieces"] = split_stats.covered;
   counts["exposure_rays"] = exposure_rays;
   counts["triangles"] = surface.mesh.triangle_count();
   counts["chunks"] = cut.meshes.size();

@@ -53,7 +53,7 @@ void CapWatch::check_predicted(const std::string& where, uint64_t predicted_mb, 
   if (memory_cap_mb_ == 0 || predicted_mb <= memory_cap_mb_) return;
   throw InputError(scene_, where,
                    what + " would need about " + std::to_string(predicted_mb) + " MiB, past " + memory_cap_text() +
-                       ": stopped before it, no output written; ask for a coarser bake (a larger --epsilon, or a "
+                       ": stopped before it, no output written; ask for a coarser bake (a larger --error or a lower --quality, or a "
                        "larger --element-size) or allow more memory",
                    kExitLimitReached);
 }

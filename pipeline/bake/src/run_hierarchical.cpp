@@ -1,6 +1,7 @@
 // The hierarchical method's run inside a bake (bake.cpp): importance, the refine-solve rounds with
 // progress, the error left per stretch of the walkthrough, the audit.
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 
@@ -8,6 +9,7 @@
 #include "walkrad/core/progress.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy_audit.h"
+#include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/view_importance.h"
 #include "walkrad/output/hierarchy_mesher.h"
 #include "walkrad/visibility/exposure.h"
@@ -16,37 +18,51 @@ namespace walkrad::bake_detail {
 
 namespace {
 
-// Where the bake is still coarse, per stretch of the walkthrough: the walkthrough's frames are cut
-// into at most 8 consecutive segments; each segment's direct importance (its primary-ray hits, scaled
-// like the solver's so that Σ R = Σ A) weighs every final link: the largest and the summed
-// B_j · R_i · ρ_i · F_ij, in W. Direct importance only: light reaching the view after more bounces
-// is not attributed.
-json error_per_segment(const Hierarchy& h, const std::vector<ViewHit>& hits, size_t view_count) {
-  json out = json::array();
-  if (hits.empty() || view_count == 0) return out;
+// The bake's own estimate of its error, as the sweep measures error (relative RMS of luminance,
+// each point weighed by the solid angle it covers; emitters left out): at every primary-ray hit of
+// the walkthrough, the leaf's estimated error is the root sum square of the errors its own links and
+// its ancestors' leave (HNode::error). Over the whole walkthrough and per stretch of it (its frames cut
+// into at most 8 consecutive segments). Without viewpoints, over the leaves by area.
+json error_estimate(const Hierarchy& h, const std::vector<ViewHit>& hits, size_t view_count) {
+  std::vector<double> chain(h.nodes().size(), 0.0);  // Σ error² from the root down
+  for (uint32_t i = 0; i < h.nodes().size(); ++i) {  // parents come before their children
+    const double own = double(h[i].error) * double(h[i].error);
+    chain[i] = own + (h[i].parent >= 0 ? chain[uint32_t(h[i].parent)] : 0.0);
+  }
+  auto ratio = [](double err, double ref) { return ref > 0 ? std::sqrt(err / ref) : 0.0; };
+  json out = {{"measure", "relative RMS of luminance, weighted by solid angle (as walkrad sweep's rms_weighted)"}};
+  if (hits.empty() || view_count == 0) {
+    double err = 0, ref = 0;
+    for (uint32_t i = 0; i < h.nodes().size(); ++i)
+      if (is_leaf_element(h[i]) && max_component(h[i].emission) == 0) {
+        err += h[i].area * chain[i];
+        ref += h[i].area * luminance(h[i].B) * luminance(h[i].B);
+      }
+    out["overall"] = ratio(err, ref);
+    out["over"] = "surfaces, by area (no viewpoints)";
+    return out;
+  }
   constexpr size_t kSegments = 8;
   const size_t segments = std::min(kSegments, view_count);
-  double total = 0;
-  for (const ViewHit& hit : hits) total += hit.weight;
-  const double scale = total > 0 ? h[h.root()].area / total : 0.0;
-  std::vector<std::array<double, kSegments>> r(h.nodes().size(), std::array<double, kSegments>{});
+  std::vector<double> err(segments, 0.0), ref(segments, 0.0);
   for (const ViewHit& hit : hits) {
     const uint32_t leaf = leaf_at(h, h.polygon_root(hit.polygon), hit.point);
-    r[leaf][std::min(segments - 1, size_t(hit.view) * segments / view_count)] += hit.weight * scale;
+    if (max_component(h[leaf].emission) > 0) continue;
+    const size_t k = std::min(segments - 1, size_t(hit.view) * segments / view_count);
+    err[k] += hit.weight * chain[leaf];
+    ref[k] += hit.weight * luminance(h[leaf].B) * luminance(h[leaf].B);
   }
-  for (size_t i = h.nodes().size(); i-- > 1;)  // children come after their parents
-    for (size_t k = 0; k < segments; ++k) r[size_t(h[uint32_t(i)].parent)][k] += r[i][k];
-  std::vector<double> largest(segments, 0.0), sum(segments, 0.0);
-  for (uint32_t i = 0; i < h.nodes().size(); ++i)
-    for (const Link& l : h[i].links)
-      for (size_t k = 0; k < segments; ++k) {
-        const double e = luminance(h[l.source].B) * r[i][k] * luminance(h[i].rho) * l.F;
-        largest[k] = std::max(largest[k], e);
-        sum[k] += e;
-      }
-  for (size_t k = 0; k < segments; ++k)
-    out.push_back({{"first_view", k * view_count / segments}, {"last_view", (k + 1) * view_count / segments - 1},
-                   {"largest_w", largest[k]}, {"sum_w", sum[k]}});
+  double e = 0, r = 0;
+  json per = json::array();
+  for (size_t k = 0; k < segments; ++k) {
+    e += err[k];
+    r += ref[k];
+    per.push_back({{"first_view", k * view_count / segments}, {"last_view", (k + 1) * view_count / segments - 1},
+                   {"estimated_error", ratio(err[k], ref[k])}});
+  }
+  out["overall"] = ratio(e, r);
+  out["over"] = "the walkthrough's primary-ray hits";
+  out["segments"] = per;
   return out;
 }
 
@@ -65,7 +81,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   }
   phases.start("solve");
   HierarchicalSettings hs;
-  hs.epsilon = s.epsilon;
+  hs.error = s.error;
   hs.min_area = s.min_area;
   hs.rays = std::max(1, s.rays_per_point) * 16;
   hs.tolerance = std::max(s.tolerance, 1e-6);
@@ -124,7 +140,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     // The element root of an input polygon: a leaf cluster's children, found through the tree.
     return (*h)[leaf_at(*h, h->polygon_root(poly), p)].B;
   };
-  r.mesh = [h](double exposure) { return mesh_hierarchy(*h, exposure); };
+  PointSolution point{true, plan.indirect.on, plan.transmission.on ? &twins : nullptr,
+                      plan.punctual.on ? &scene.lights : nullptr, plan.visibility.on ? &rays : nullptr};
+  r.mesh = [h, point](double exposure) { return mesh_hierarchy(*h, exposure, point); };
   std::vector<double> lum;
   for (const HNode& n : h->nodes())
     if (!n.cluster && !n.child_count && !n.emission.x && !n.emission.y && !n.emission.z) lum.push_back(luminance(n.B) / kPi);
@@ -134,17 +152,17 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves}});
-  r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements},
+  r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast},
               {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
               {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},
               {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()},
               {"light_rays", stats.light_rays}, {"light_refinements", stats.light_refinements}};
-  r.solver = {{"error_per_segment", error_per_segment(*h, hits, views.size())},
+  r.solver = {{"estimated_error", error_estimate(*h, hits, views.size())},
               {"iteration", s.solver},
-              {"oracle", stats.oracle}, {"epsilon", s.epsilon}, {"epsilon_w", stats.epsilon_absolute},
+              {"oracle", stats.oracle}, {"error", s.error}, {"white", stats.white}, {"min_area", stats.min_area},
+              {"above_tolerance", stats.above_tolerance},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
-              {"left_error_max_w", stats.left_error_max}, {"left_error_sum_w", stats.left_error_sum},
               {"corrections", stats.corrections},
               {"balance", {{"iterations", stats.balance_iterations}, {"row_error", stats.balance_row_error},
                            {"column_error", stats.balance_column_error}, {"unbalanced_leaves", stats.balance_unbalanced}}}};

@@ -93,7 +93,6 @@ TEST(PunctualLights, SpotLightLightsOnlyItsCone) {
   const ClusterTree tree = build_cluster_tree(s);
   Hierarchy h(s, tree);
   HierarchicalSettings settings;
-  settings.epsilon = 1e-4;
   settings.lights = &s.lights;
   HierarchicalStats stats;
   solve_hierarchical(h, rays, settings, stats);
@@ -150,7 +149,6 @@ TEST_F(PunctualBake, PointLightInARoomThroughAFile) {
     b.scene = file;
     b.output = (dir_ / method).string();
     b.method = method;
-    b.epsilon = 1e-5;
     b.element_size = 0.1;
     b.progress = false;
     b.exposure = 1.0;

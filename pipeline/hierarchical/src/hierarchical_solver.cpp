@@ -13,32 +13,44 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       : h_(h), rays_(rays), s_(s), stats_(stats) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
-  // Punctual lights first: what they deliver to the surfaces counts in the power Φ that scales ε.
+  cube_.resize(h_.nodes().size());  // every cluster exists from the start
+  // Punctual lights: each input polygon's direct irradiance, and how much it varies over it (the
+  // elements are split for it once a solve has given the tolerances: refine_for_lights).
   if (lights()) {  // every element is an input polygon's root here
     for (uint32_t i = 0; i < h_.nodes().size(); ++i)
       if (!h_[i].cluster) light_frontier_.push_back(i);
     light_spread_ = direct_for(light_frontier_);
   }
-  Vec3 emitted;
-  for (const HNode& n : h_.nodes())
-    if (!n.cluster) emitted += (n.emission + n.D) * n.area;
-  const double power = luminance(emitted);
-  eps_ = s_.epsilon * power;
-  stats_.epsilon_absolute = eps_;
-  min_area_ = s_.min_area > 0 ? s_.min_area : std::pow(2.0 * root.radius / 256.0, 2);
+  min_area_ = s_.min_area > 0 ? s_.min_area : default_min_area(h_);
+  quantum_area_ = default_min_area(h_) * 16;  // the median polygon side / 32, squared
   // Changes are measured relative to the leaf's radiosity, but not below 1e-9 of the brightest
   // emitter's: a closed dark room's last traces of light decay by ρ per sweep and would keep their
   // relative change until they underflow (3,853 sweeps in the junction scene).
   for (const HNode& n : h_.nodes())
     if (!n.cluster) change_floor_ = std::max(change_floor_, 1e-9 * max_component(n.emission + mul(n.rho, n.D)));
-  // Importance: scaled so that Σ R = Σ A, then B·I·ρ·F and the BF oracle B·A·ρ·F share ε.
+  // Importance: scaled so that Σ R = Σ A. The display weight's unit is the importance density of a
+  // surface the views see barely (the 10th percentile by area over the elements they see directly):
+  // every pixel's error counts the same, so a far wall is held to the error of a near floor.
   importance_ = s_.use_importance && root.R > 0;
-  stats_.oracle = importance_ ? "importance" : "BF";
+  stats_.oracle = importance_ ? "importance" : "view-independent";
   if (importance_) {
     const double scale = root.area / root.R;
+    std::vector<std::pair<double, double>> seen;  // density, area
+    double total = 0;
     for (HNode& n : h_.nodes()) {
       n.R *= scale;
       n.I = n.R;
+      if (!n.cluster && n.R > 0 && n.area > 0) {
+        seen.push_back({n.R / n.area, n.area});
+        total += n.area;
+      }
+    }
+    std::sort(seen.begin(), seen.end());
+    double below = 0;
+    for (const auto& [density, area] : seen) {
+      seen_density_ = density;
+      below += area;
+      if (below >= kSeenQuantile * total) break;
     }
   }
 }
@@ -48,10 +60,15 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   for (int it = 0; it < s_.max_iterations; ++it) {
     IterationStats is;
     const size_t before = pending_.size();
+    const size_t elements_before = h_.element_count();
     if (it == 0) {
-      refine_for_lights();
-      refine(h_.root(), h_.root(), nullptr);
+      refine(h_.root(), h_.root(), nullptr);  // as high as links may go: the error is measured from round 1
     } else {
+      direct_weights_ = it == 1;
+      if (it == 1) {
+        update_scales();
+        refine_for_lights();
+      }
       refine_existing();
     }
     if (s_.checkpoint) s_.checkpoint("refinement", 0);
@@ -60,7 +77,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     evaluate_pending(is);
     if (s_.checkpoint) s_.checkpoint("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
-    const bool settled = is.new_links == 0;
+    const bool settled = is.new_links == 0 && h_.element_count() == elements_before;  // (lights split elements too)
     if (settled && converged_before) {
       is.change = 0;
       record(is, progress);
@@ -103,20 +120,35 @@ void Solver::record(IterationStats& is, const std::function<void(const Iteration
   if (progress) progress(is);
 }
 
-void Solver::measure_left_error() {
-  for (const HNode& n : h_.nodes())
-    for (const Link& l : n.links) {
-      const double e = luminance(h_[l.source].B) * weight(n) * luminance(n.rho) * l.F;
-      stats_.left_error_max = std::max(stats_.left_error_max, e);
-      stats_.left_error_sum += e;
-    }
-}
-
 thread_local std::vector<double> Solver::kernel_scratch_;
 thread_local std::vector<Solver::ClusterSample> Solver::cluster_scratch_;
 thread_local std::vector<uint8_t> Solver::blocked_scratch_;
 
 }  // namespace hierarchical_detail
+
+double default_min_area(const Hierarchy& h) {
+  // A 128th of the median input polygon's side, the median taken by area (the size of the surfaces
+  // most of the scene is made of): the same for a room whatever the building around it, and it scales
+  // with the scene's units.
+  std::vector<std::pair<double, double>> sizes;
+  double total = 0;
+  for (const HNode& n : h.nodes())
+    if (!n.cluster && n.depth == 0 && n.area > 0) {
+      sizes.push_back({n.area, n.area});
+      total += n.area;
+    }
+  if (sizes.empty()) return 0;
+  std::sort(sizes.begin(), sizes.end());
+  double below = 0, median = sizes.back().first;
+  for (const auto& [a, w] : sizes) {
+    below += w;
+    if (below >= 0.5 * total) {
+      median = a;
+      break;
+    }
+  }
+  return median / (128.0 * 128.0);
+}
 
 void solve_hierarchical(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& settings, HierarchicalStats& stats,
                         const std::function<void(const IterationStats&)>& progress) {

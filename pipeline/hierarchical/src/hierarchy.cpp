@@ -29,6 +29,10 @@ uint32_t Hierarchy::add_element(const Polygon& shape, uint32_t polygon, int32_t 
   n.radius = 0.5 * length(n.bounds.diagonal());
   n.area = polygon_area(shape);
   n.normal = polygon_normal(shape);
+  for (int a = 0; a < 3; ++a) {
+    n.facing[size_t(2 * a)] = float(n.area * std::max(0.0, n.normal[a]));
+    n.facing[size_t(2 * a + 1)] = float(n.area * std::max(0.0, -n.normal[a]));
+  }
   const Material& m = scene_.materials[shape.material];
   n.rho = m.reflectance;
   n.emission = m.emission;
@@ -68,11 +72,14 @@ uint32_t Hierarchy::add_cluster(uint32_t tree_node, int32_t parent) {
   }
   // Area-averaged material, for the oracle's ρ and for B before the first push-pull.
   Vec3 rho, e;
+  std::array<float, 6> facing = {};
   for (uint32_t k : kids) {
     rho += nodes_[k].rho * nodes_[k].area;
     e += nodes_[k].emission * nodes_[k].area;
+    for (size_t a = 0; a < 6; ++a) facing[a] += nodes_[k].facing[a];
   }
   HNode& me = nodes_[index];
+  me.facing = facing;
   if (me.area > 0) {
     me.rho = rho / me.area;
     me.emission = e / me.area;
@@ -84,28 +91,29 @@ uint32_t Hierarchy::add_cluster(uint32_t tree_node, int32_t parent) {
   return index;
 }
 
-bool Hierarchy::subdivide(uint32_t e) {
-  if (nodes_[e].cluster) return false;
-  if (nodes_[e].child_count) return true;
-  const Polygon s = nodes_[e].shape;
-  const uint32_t polygon = nodes_[e].polygon;
-  const uint8_t depth = uint8_t(nodes_[e].depth + 1);
+std::array<Polygon, 4> split_element(const Polygon& s) {
   auto piece = [&](std::initializer_list<Vec3> v) {
     Polygon p = s;
     p.count = uint8_t(v.size());
     std::copy(v.begin(), v.end(), p.v.begin());
     return p;
   };
-  std::vector<Polygon> kids;
   if (s.count == 4) {
     const Vec3 m01 = (s.v[0] + s.v[1]) * 0.5, m12 = (s.v[1] + s.v[2]) * 0.5, m23 = (s.v[2] + s.v[3]) * 0.5,
                m30 = (s.v[3] + s.v[0]) * 0.5, c = (m01 + m23) * 0.5;
-    kids = {piece({s.v[0], m01, c, m30}), piece({m01, s.v[1], m12, c}), piece({c, m12, s.v[2], m23}),
+    return {piece({s.v[0], m01, c, m30}), piece({m01, s.v[1], m12, c}), piece({c, m12, s.v[2], m23}),
             piece({m30, c, m23, s.v[3]})};
-  } else {
-    const Vec3 m01 = (s.v[0] + s.v[1]) * 0.5, m12 = (s.v[1] + s.v[2]) * 0.5, m20 = (s.v[2] + s.v[0]) * 0.5;
-    kids = {piece({s.v[0], m01, m20}), piece({m01, s.v[1], m12}), piece({m20, m12, s.v[2]}), piece({m01, m12, m20})};
   }
+  const Vec3 m01 = (s.v[0] + s.v[1]) * 0.5, m12 = (s.v[1] + s.v[2]) * 0.5, m20 = (s.v[2] + s.v[0]) * 0.5;
+  return {piece({s.v[0], m01, m20}), piece({m01, s.v[1], m12}), piece({m20, m12, s.v[2]}), piece({m01, m12, m20})};
+}
+
+bool Hierarchy::subdivide(uint32_t e) {
+  if (nodes_[e].cluster) return false;
+  if (nodes_[e].child_count) return true;
+  const uint32_t polygon = nodes_[e].polygon;
+  const uint8_t depth = uint8_t(nodes_[e].depth + 1);
+  const std::array<Polygon, 4> kids = split_element(nodes_[e].shape);
   std::vector<uint32_t> idx;
   for (const Polygon& k : kids) idx.push_back(add_element(k, polygon, int32_t(e), depth));
   HNode& me = nodes_[e];
@@ -187,6 +195,43 @@ void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point
       }
     }
   }
+}
+
+uint32_t share_areas(const Hierarchy& h, uint32_t receiver, std::array<double, 4>& areas) {
+  const HNode& n = h[receiver];
+  areas = {};
+  if (n.cluster || n.child_count) {
+    const uint32_t count = std::min<uint32_t>(n.child_count, 4);
+    for (uint32_t c = 0; c < count; ++c) areas[c] = h[h.child(n, c)].area;
+    return count;
+  }
+  const std::array<Polygon, 4> kids = split_element(n.shape);
+  for (size_t c = 0; c < 4; ++c) areas[c] = polygon_area(kids[c]);
+  return 4;
+}
+
+void normalize_shares(const Hierarchy& h, uint32_t receiver, Link& link) {
+  std::array<double, 4> areas;
+  const uint32_t count = share_areas(h, receiver, areas);
+  double total = 0, weighted = 0;
+  for (uint32_t c = 0; c < count; ++c) {
+    total += areas[c];
+    weighted += areas[c] * std::max(0.0f, link.share[c]);
+  }
+  if (count == 0 || weighted <= 0) {
+    link.share = {1, 1, 1, 1};
+    return;
+  }
+  for (uint32_t c = 0; c < count; ++c) link.share[c] = float(std::max(0.0f, link.share[c]) * total / weighted);
+}
+
+uint32_t child_slot(const Hierarchy& h, uint32_t node) {
+  const int32_t parent = h[node].parent;
+  if (parent < 0) return 0;
+  const HNode& p = h[uint32_t(parent)];
+  for (uint32_t c = 0; c < p.child_count; ++c)
+    if (h.child(p, c) == node) return c;
+  return 0;
 }
 
 namespace {

@@ -1,5 +1,7 @@
 #include "walkrad/hierarchical/hierarchy_audit.h"
 
+#include "walkrad/hierarchical/directional_irradiance.h"
+
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/transmission.h"
 
@@ -10,12 +12,14 @@ namespace {
 // The hierarchy's transfer as the solver runs it: irradiance gathered from what sources send (Bt), and
 // what escapes counted where it leaves, per leaf: B A (1 − the fraction its links and its ancestors'
 // carry away, times its send factor), so that the balance closes whatever the links' distribution.
-void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double carried, const std::vector<double>& sent,
-                const std::vector<uint32_t>* twins, EnergyAudit& audit) {
+void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, DirectionalIrradiance cube, double carried,
+                const std::vector<double>& sent, const std::vector<uint32_t>* twins, EnergyAudit& audit) {
   const HNode& n = h[i];
-  for (const Link& l : n.links) down += h[l.source].Bt * l.F;
   carried += sent[i];
+  if (n.cluster)
+    for (const Link& l : n.links) cube.add(n, link_direction(n, h[l.source]), l.F, h[l.source].Bt);
   if (n.child_count == 0) {
+    for (const Link& l : n.links) down += h[l.source].Bt * l.F;
     if (n.cluster) return;
     AuditElement e{n.area, n.rho, n.emission, n.B, down * n.receive + n.D, carried * n.send, n.D};
     if (twins && (*twins)[n.polygon] != kNoTwin) {  // what passes through from the other side
@@ -25,7 +29,14 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, double carried, const
     add_to_audit(audit, e);
     return;
   }
-  for (uint32_t k = 0; k < n.child_count; ++k) audit_node(h, h.child(n, k), down, carried, sent, twins, audit);
+  for (uint32_t k = 0; k < n.child_count; ++k) {  // as the solve pushes (solve_sweep.cpp)
+    const HNode& child = h[h.child(n, k)];
+    Vec3 pushed = down;
+    if (n.cluster && !child.cluster) pushed += cube.at(child.normal);
+    if (!n.cluster && k < 4)
+      for (const Link& l : n.links) pushed += h[l.source].Bt * (l.F * double(l.share[k]));
+    audit_node(h, h.child(n, k), pushed, child.cluster ? cube : DirectionalIrradiance{}, carried, sent, twins, audit);
+  }
 }
 
 }  // namespace
@@ -35,9 +46,21 @@ EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twi
   // Σ F A_receiver ā_receiver / A_source over links from the node (ā: the receiver's mean receive factor).
   std::vector<double> sent(h.nodes().size(), 0.0);
   const std::vector<double> receive = mean_receive(h);
-  for (size_t k = 0; k < h.nodes().size(); ++k)
-    for (const Link& l : h.nodes()[k].links) sent[l.source] += l.F * h.nodes()[k].area * receive[k] / h[l.source].area;
-  if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, 0.0, sent, twins, audit);
+  for (size_t k = 0; k < h.nodes().size(); ++k) {
+    const HNode& p = h.nodes()[k];
+    for (const Link& l : p.links) {
+      // What the receiver takes: an element's children's areas by their shares and receive factors
+      // (a cluster's by direction, taken as even).
+      double taken = p.area * receive[k];
+      if (p.child_count && !p.cluster) {
+        taken = 0;
+        for (uint32_t c = 0; c < p.child_count && c < 4; ++c)
+          taken += h[h.child(p, c)].area * double(l.share[c]) * receive[h.child(p, c)];
+      }
+      sent[l.source] += l.F * taken / h[l.source].area;
+    }
+  }
+  if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, DirectionalIrradiance{}, 0.0, sent, twins, audit);
   return audit;
 }
 

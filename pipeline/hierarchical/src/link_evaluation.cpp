@@ -56,8 +56,11 @@ void Solver::evaluate_pending(IterationStats& is) {
       ++stats_.unoccluded_links;
     }
     if (h_[p.receiver].cluster || h_[p.source].cluster) ++stats_.monte_carlo_links;
-    if (p.F > 0) {
-      h_[p.receiver].links.push_back({p.source, p.F, p.spread});
+    if (p.F > 0 || p.sigma > 0) {  // a wholly hidden link stays while it may still see something
+      Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)),
+             uint16_t(std::min(p.samples, 65535))};
+      normalize_shares(h_, p.receiver, l);
+      h_[p.receiver].links.push_back(l);
       ++stats_.links;
     }
   }
@@ -82,6 +85,95 @@ void Solver::visibility(Pending& p, const std::vector<RayScene::Segment>& segmen
   }
 }
 
+namespace {
+
+// What a link's samples say of each receiver child beyond their noise: the child's estimate F_c
+// against the whole link's F, its deviation shrunk by two standard errors (so that a uniform
+// transfer is not taken for an uneven one), as a share of F (Link::share).
+std::array<float, 4> shares(const double* Fc, const double* sigma_c, uint32_t count, double F) {
+  std::array<float, 4> out = {1, 1, 1, 1};
+  if (F <= 0) return out;
+  for (uint32_t c = 0; c < count; ++c) {
+    const double d = Fc[c] - F, kept = std::max(0.0, std::fabs(d) - 2.0 * sigma_c[c]);
+    out[c] = float(1.0 + std::copysign(kept, d) / F);
+  }
+  return out;
+}
+
+}  // namespace
+
+void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments,
+                               std::vector<double>& visible) const {
+  // Element to element, quadrant by quadrant of the receiver (its children to be, split_element):
+  // the contour formula over each quadrant's quadrature points gives its unoccluded form factor
+  // exactly; rays from points uniform over the quadrant to points uniform over the source estimate
+  // the part hidden, (A_j/π) E[cos cos / r² · blocked] (a control variate: unbiased, where a
+  // visible fraction of rays is biased near occluders). F is the quadrants' area mean.
+  // A link whose every ray is blocked sees nothing of the source: 0, not the control variate's
+  // unbiased but noisy difference, which is positive half of the time and leaked light into closed
+  // rooms (stability suite, junctions). Through volumes no ray is ever wholly blocked
+  // (transmittance exp(−τ) > 0): where most of the source is hidden the control variate is all
+  // noise, so the plain estimate of the part that arrives, (A_j/π) E[cos cos / r² · visible], is
+  // used instead (unbiased as well).
+  const HNode& ri = h_[p.receiver];
+  const HNode& sj = h_[p.source];
+  const double offset = rays_.offset();
+  const std::array<Polygon, 4> kids = split_element(ri.shape);
+  const int order = std::max(1, quadrature_order(length(ri.center - sj.center), std::sqrt(ri.area), std::sqrt(sj.area)) / 2);
+  const int per_child = p.need_rays || p.volume ? std::max(1, p.samples / 4) : 0;
+  std::vector<double>& kernel = kernel_scratch_;
+  kernel.clear();
+  segments.clear();
+  double area[4], unoccluded[4];
+  for (int c = 0; c < 4; ++c) {
+    area[c] = polygon_area(kids[c]);
+    unoccluded[c] = 0;
+    for (const QuadraturePoint& q : quadrature_points(kids[c], order))
+      if (dot(q.position - sj.shape.v[0], sj.normal) > 0) unoccluded[c] += q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
+    for (int k = 0; k < per_child; ++k) {
+      const Vec3 x = sample_polygon(kids[c], rng.uniform(), rng.uniform());
+      const Vec3 y = sample_polygon(sj.shape, rng.uniform(), rng.uniform());
+      segments.push_back({x + ri.normal * offset, y + sj.normal * offset});
+      kernel.push_back(sj.area / kPi * point_kernel(x, ri.normal, y, sj.normal));
+    }
+  }
+  visibility(p, segments, visible);
+  double Fc[4], sigma_c[4], F = 0, arrives = 0, hidden_part = 0, variance = 0;
+  size_t hidden = 0;
+  for (int c = 0; c < 4; ++c) {
+    double occluded = 0, occluded2 = 0, open = 0;
+    for (int k = 0; k < per_child; ++k) {
+      const double v = visible[size_t(c * per_child + k)], K = kernel[size_t(c * per_child + k)];
+      occluded += K * (1.0 - v);
+      occluded2 += K * K * (1.0 - v) * (1.0 - v);
+      open += K * v;
+      hidden += v == 0.0;
+    }
+    const double n = double(std::max(1, per_child));
+    const double mean = occluded / n, var = per_child > 1 ? std::max(0.0, occluded2 / n - mean * mean) / (n - 1) : 0.0;
+    Fc[c] = (area[c] > 0 ? unoccluded[c] / area[c] : 0.0) - mean;
+    sigma_c[c] = std::sqrt(var);
+    const double w = area[c] / ri.area;
+    F += w * Fc[c];
+    variance += w * w * var;
+    arrives += w * open / n;
+    hidden_part += w * mean;
+  }
+  if (p.volume && arrives < hidden_part) F = arrives;
+  p.F = std::max(0.0, F);
+  p.sigma = std::sqrt(variance);
+  double open = 0;
+  for (int c = 0; c < 4; ++c) open += unoccluded[c];
+  p.open = float(open / ri.area);
+  if (!segments.empty() && hidden == segments.size()) {
+    // Every ray blocked: 0, but the part n rays could have missed stays uncertain (a visible fraction
+    // of about 1/n), so that the refinement can still find the part that sees.
+    p.F = 0;
+    p.sigma = p.open / float(segments.size());
+  }
+  p.share = shares(Fc, sigma_c, 4, p.F);
+}
+
 void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
               std::vector<double>& weights) const {
   const HNode& ri = h_[p.receiver];
@@ -91,63 +183,7 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   segments.clear();
   weights.clear();
   if (!ri.cluster && !sj.cluster) {
-    // Element to element: the contour formula over receiver quadrature points, each point's
-    // visibility from rays to stratified points of the source.
-    const int order = quadrature_order(length(ri.center - sj.center), std::sqrt(ri.area), std::sqrt(sj.area));
-    const std::vector<QuadraturePoint> pts = quadrature_points(ri.shape, order);
-    const int per_point = p.need_rays || p.volume ? std::max(1, p.samples / int(pts.size())) : 0;
-    std::vector<double>& kernel = kernel_scratch_;
-    kernel.clear();
-    for (const QuadraturePoint& q : pts) {
-      double f = 0;
-      if (dot(q.position - sj.shape.v[0], sj.normal) > 0) f = point_to_polygon(q.position, ri.normal, sj.shape);
-      weights.push_back(q.weight * f);
-      const Vec3 from = q.position + ri.normal * offset;
-      for (int k = 0; k < per_point; ++k) {
-        const Vec3 y = sample_polygon(sj.shape, rng.uniform(), rng.uniform());
-        segments.push_back({from, y + sj.normal * offset});
-        kernel.push_back(point_kernel(q.position, ri.normal, y, sj.normal));
-      }
-    }
-    visibility(p, segments, visible);
-    // Control variate (unbiased): the exact unoccluded point form factor minus a Monte Carlo
-    // estimate of its occluded part, (A_j/π) E[cos cos / r² · blocked]. Visibility as a fraction
-    // of rays (even weighted) is biased where occluders sit near either end, and those biases
-    // add up to lost power in cluttered rooms.
-    // A link whose every ray is blocked sees nothing of the source: 0, not the control variate's
-    // unbiased but noisy difference, which is positive half of the time and leaked light into
-    // closed rooms (stability suite, junctions). Per point it would bias: one ray a point is common.
-    // Through volumes no ray is ever wholly blocked (transmittance exp(−τ) > 0): where most of
-    // the source is hidden the control variate is all noise, so the plain estimate of the part
-    // that arrives, (A_j/π) E[cos cos / r² · visible], is used instead (unbiased as well).
-    double sum = 0, direct = 0, open = 0, shut = 0;
-    size_t hidden = 0;
-    for (size_t q = 0; q < pts.size(); ++q) {
-      double occluded = 0, arrives = 0;
-      for (int k = 0; k < per_point; ++k) {
-        const double v = visible[q * per_point + k];
-        occluded += kernel[q * per_point + k] * (1.0 - v);
-        arrives += kernel[q * per_point + k] * v;
-        hidden += v == 0.0;
-      }
-      const double f = weights[q] - pts[q].weight * sj.area / kPi * (per_point ? occluded / per_point : 0.0);
-      sum += f;
-      if (per_point) direct += pts[q].weight * sj.area / kPi * arrives / per_point;
-      open += arrives;
-      shut += occluded;
-    }
-    if (!segments.empty() && hidden == segments.size()) sum = 0;
-    if (p.volume && open < shut) sum = direct;
-    sum = std::max(0.0, sum);
-    p.F = sum / ri.area;
-    // Variation of the point form factor over the receiver, from its quadrature points.
-    double lo = INFINITY, hi = 0;
-    for (size_t q = 0; q < pts.size(); ++q) {
-      const double f = pts[q].weight > 0 ? weights[q] / pts[q].weight : 0.0;
-      lo = std::min(lo, f);
-      hi = std::max(hi, f);
-    }
-    p.spread = pts.empty() ? 0.0 : hi - lo;
+    evaluate_elements(p, rng, segments, visible);
     return;
   }
   // A cluster at one end or both (Smits, Arvo & Greenberg 1994): the unoccluded form factor from
@@ -162,11 +198,14 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   int drawn = 0, facing = 0;
   std::vector<ClusterSample>& drawn_samples = cluster_scratch_;
   drawn_samples.clear();
+  std::array<Polygon, 4> quadrants;  // an element receiver's children to be
+  if (!ri.cluster) quadrants = split_element(ri.shape);
   for (; drawn < n || (facing < (n + 3) / 4 && drawn < 8 * n); ++drawn) {
     Vec3 pi, ni, pj, nj;
     uint32_t child = 0;
     h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni, &child);
     h_.sample(sj, rng.uniform(), rng.uniform(), rng.uniform(), pj, nj);
+    if (!ri.cluster) child = quadrant_of(quadrants, ri.normal, pi);
     drawn_samples.push_back({child, 0.0, -1});
     const Vec3 d = pj - pi;
     const double r2 = dot(d, d);
@@ -185,46 +224,92 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     }
   }
   visibility(p, segments, visible);
-  if (ri.cluster) p.spread = misplaced(ri, drawn_samples, visible);
+  double open2 = 0, shut2 = 0;
   for (size_t k = 0; k < segments.size(); ++k) {
     weighted += weights[k];
     open += weights[k] * visible[k];
+    shut2 += weights[k] * weights[k] * (1 - visible[k]) * (1 - visible[k]);
+  }
+  for (const ClusterSample& c : drawn_samples) {
+    const double v = c.segment >= 0 ? c.value * visible[size_t(c.segment)] : c.value;
+    open2 += v * v;
   }
   // F = unoccluded − occluded part. The unoccluded form factor is exact for few polygon pairs and
   // the Monte Carlo mean otherwise; the occluded part, (1/N) Σ K · blocked, is an unbiased estimate
   // from the same samples (a control variate: no ratio, so no bias from few facing samples).
-  const double occluded = (weighted - open) / drawn;
-  const double unoccluded = polygon_pairs(ri, sj) <= kExactClusterPairs ? exact_unoccluded(ri, sj) : mc / drawn;
+  const double N = drawn;
+  const double occluded = (weighted - open) / N;
+  const bool exact = polygon_pairs(ri, sj) <= kExactClusterPairs;
+  const double unoccluded = exact ? exact_unoccluded(ri, sj) : mc / N;
   // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
   // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
   const bool all_blocked = !segments.empty() && open == 0;
   // Mostly hidden through volumes: the plain estimate, as for elements above.
   const bool mostly_hidden = p.volume && open < weighted - open;
-  p.F = all_blocked ? 0.0 : std::max(0.0, mostly_hidden ? open / drawn : unoccluded - occluded);
+  const bool plain = mostly_hidden || !exact;  // the estimate is the mean of K·v over the samples
+  p.F = all_blocked ? 0.0 : std::max(0.0, mostly_hidden ? open / N : unoccluded - occluded);
+  // Standard error: of the mean of K·v, or of the hidden part's mean K·(1 − v) beside an exact F;
+  // every ray blocked: a visible fraction of about 1/n of the unoccluded form factor.
+  const double m = plain ? open / N : occluded, m2 = plain ? open2 / N : shut2 / N;
+  p.open = float(unoccluded);
+  p.sigma = all_blocked ? unoccluded / double(segments.size())
+                        : N > 1 ? std::sqrt(std::max(0.0, m2 - m * m) / (N - 1)) : 0.0;
+  p.share = ri.cluster ? cluster_shares(ri, sj) : child_shares(4, drawn_samples, visible, open / N);
 }
 
-double Solver::misplaced(const HNode& receiver, const std::vector<Solver::ClusterSample>& samples, const std::vector<double>& visible) {
-  constexpr uint32_t kMaxChildren = 8;
-  if (receiver.child_count < 2 || receiver.child_count > kMaxChildren || samples.empty()) return 0.0;
-  double sum[kMaxChildren] = {}, sq[kMaxChildren] = {}, count[kMaxChildren] = {};
-  double total = 0;
+uint32_t Solver::quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal, const Vec3& p) {
+  for (uint32_t c = 0; c < 3; ++c) {
+    const Polygon& q = quadrants[c];
+    bool inside = true;
+    for (int k = 0; k < q.count && inside; ++k)
+      inside = dot(cross(q.v[(k + 1) % q.count] - q.v[k], p - q.v[k]), normal) >= 0;
+    if (inside) return c;
+  }
+  return 3;
+}
+
+std::array<float, 4> Solver::cluster_shares(const HNode& ri, const HNode& sj) const {
+  // Each child's projected area towards the source, by the source's projected area towards it, over
+  // the squared distance: what the child gets per unit area, against the cluster's area mean. From
+  // geometry alone (a few Monte Carlo samples per child could not tell a book's spine from its top).
+  std::array<float, 4> out = {1, 1, 1, 1};
+  const uint32_t kids = ri.child_count;
+  if (kids < 2 || kids > 4) return out;
+  double k[4] = {}, mean = 0;
+  for (uint32_t c = 0; c < kids; ++c) {
+    const HNode& n = h_[h_.child(ri, c)];
+    const Vec3 d = sj.center - n.center;
+    const double r = std::max(length(d), 1e-30);
+    const Vec3 u = d / r;
+    const double towards = sj.cluster ? projected_area(sj, -u) / std::max(sj.area, 1e-300) : std::max(0.0, -dot(sj.normal, u));
+    k[c] = (n.area > 0 ? projected_area(n, u) / n.area : 0.0) * towards / (r * r + sj.radius * sj.radius);
+    mean += k[c] * n.area / ri.area;
+  }
+  if (mean <= 0) return out;
+  for (uint32_t c = 0; c < kids; ++c) out[c] = float(k[c] / mean);
+  return out;
+}
+
+std::array<float, 4> Solver::child_shares(uint32_t children, const std::vector<ClusterSample>& samples,
+                                          const std::vector<double>& visible, double F) {
+  double Fc[4] = {}, sigma_c[4] = {};
+  if (children < 2 || children > 4 || samples.empty()) return shares(Fc, sigma_c, 0, F);
+  double sum[4] = {}, sq[4] = {}, count[4] = {};
   for (const ClusterSample& s : samples) {
     const double v = s.segment >= 0 ? s.value * visible[size_t(s.segment)] : s.value;
     sum[s.child] += v;
     sq[s.child] += v * v;
     count[s.child] += 1;
-    total += v;
   }
-  const double mean = total / double(samples.size());
-  double out = 0;
-  for (uint32_t c = 0; c < receiver.child_count; ++c) {
-    if (count[c] < 1) continue;
-    const double m = sum[c] / count[c];
-    const double var = std::max(0.0, sq[c] / count[c] - m * m);
-    const double error = 2.0 * std::sqrt(var / count[c]);
-    out += count[c] / double(samples.size()) * std::max(0.0, std::fabs(m - mean) - error);
+  for (uint32_t c = 0; c < children; ++c) {
+    if (count[c] < 2) {  // too few samples to say anything of this child
+      Fc[c] = F;
+      continue;
+    }
+    Fc[c] = sum[c] / count[c];
+    sigma_c[c] = std::sqrt(std::max(0.0, sq[c] / count[c] - Fc[c] * Fc[c]) / (count[c] - 1));
   }
-  return out;
+  return shares(Fc, sigma_c, children, F);
 }
 
 double Solver::point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {

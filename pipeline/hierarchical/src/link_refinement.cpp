@@ -1,6 +1,8 @@
 // Refinement of the hierarchy's links (Hanrahan, Salzman & Aupperle 1991; clusters: Smits, Arvo &
-// Greenberg 1994): where a link's oracle exceeds ε, split an end and recurse; shafts carry the
-// candidate occluders down.
+// Greenberg 1994) by the error each receiver is left with (hierarchical_solver.h): the first pass
+// links nodes as high as they may be linked; later passes split the receivers whose transfers fall
+// unevenly on them and the sources whose radiosity the receiver needs in finer detail. Shafts carry
+// the candidate occluders down.
 #include "solver.h"
 
 #include <algorithm>
@@ -11,10 +13,6 @@
 namespace walkrad::hierarchical_detail {
 
 namespace {
-
-// Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
-// Used by the refinement oracle's estimate; link form factors use each surface's own cosine.
-constexpr double kClusterCosine = 0.25;
 
 // Distance between two boxes (0 when they overlap or touch).
 double box_distance(const Bounds& a, const Bounds& b) {
@@ -46,7 +44,7 @@ void Solver::refine_for_lights() {
     std::vector<uint32_t> next;
     for (size_t k = 0; k < frontier.size(); ++k) {
       const uint32_t i = frontier[k];
-      if (!splittable(i) || luminance(h_[i].rho) * spread[k] * weight(h_[i]) <= eps_) continue;
+      if (!splittable(i) || luminance(h_[i].rho) * spread[k] <= tolerance(i)) continue;
       h_.subdivide(i);
       ++stats_.light_refinements;
       for (uint32_t c = 0; c < h_[i].child_count; ++c) next.push_back(h_.child(h_[i], c));
@@ -71,21 +69,7 @@ bool Solver::splittable(uint32_t i) const {
   return n.depth < s_.max_depth && n.area * 0.25 >= min_area_;
 }
 
-double Solver::estimate(const HNode& ri, const HNode& sj) const {
-  const Vec3 d = sj.center - ri.center;
-  const double r2 = dot(d, d), r = std::sqrt(r2);
-  const bool near = clearly_greater(2.0 * (ri.radius + sj.radius), r);
-  const Vec3 u = r > 0 ? d / r : Vec3{};
-  const double ci = ri.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, dot(ri.normal, u)));
-  const double cj = sj.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, -dot(sj.normal, u)));
-  return ci * cj * sj.area / (kPi * r2 + sj.area);
-}
-
-double Solver::oracle(const HNode& ri, const HNode& sj) const {
-  return luminance(sj.B) * weight(ri) * luminance(ri.rho) * estimate(ri, sj);
-}
-
-void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent) {
+void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool force) {
   if (i == j) {
     if (!h_[i].cluster) return;  // a planar element does not see itself
     const uint32_t count = h_[i].child_count;
@@ -107,12 +91,12 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent)
   const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
   const bool must_split = (reach > 0 && clearly_greater(0.5 * reach, box_distance(h_[i].bounds, h_[j].bounds))) ||
                           two_sided(i) || two_sided(j);
-  const bool split = must_split || oracle(h_[i], h_[j]) > eps_;
 
   // Candidates between the two: the parent's list filtered by this pair's shaft.
   const Shaft shaft(h_[i].bounds, h_[j].bounds);
   const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
   std::vector<uint32_t> candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
+  const bool split = force || must_split || worth_splitting(i, j, !candidates.empty());
 
   if (split) {
     const bool si = splittable(i), sj = splittable(j);
@@ -134,8 +118,7 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent)
       return;
     }
   }
-  // More rays where more can block, and where the transfer matters more than ε (a link kept only
-  // because neither end may split further).
+  // More rays where more can block.
   // Volumes count as one blocker: their transmittance varies smoothly, not all or nothing.
   size_t volumes = 0;
   for (uint32_t c : candidates) volumes += (c & kVolumeTags) != 0;
@@ -143,7 +126,6 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent)
   int samples = s_.rays;
   if (blockers > 4) samples *= 2;
   if (blockers > 64) samples *= 2;
-  if (split) samples *= 2;
   // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
   if (s_.checkpoint && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
     s_.checkpoint("refinement", 2 * pending_.capacity() * sizeof(Pending));
@@ -178,43 +160,49 @@ std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& sha
   return filter_candidates(tree, shaft, out, ex_i, ex_j, tags);
 }
 
+void Solver::split_link(uint32_t i, uint32_t j, bool receiver) {
+  const uint32_t end = receiver ? i : j;
+  h_.subdivide(end);
+  --stats_.links;
+  for (uint32_t k = 0; k < h_[end].child_count; ++k) {
+    const uint32_t c = h_.child(h_[end], k);
+    if (receiver) refine(c, j, nullptr);
+    else refine(i, c, nullptr);
+  }
+}
+
 void Solver::refine_existing() {
+  update_scales();
+  measure_variation();
   const size_t n = h_.nodes().size();
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t at = 0; at < n; ++at) {
+    const uint32_t i = uint32_t(at);
     if (s_.checkpoint && i % 4096 == 4095) s_.checkpoint("refinement", 0);
     if (h_[i].links.empty()) continue;
     std::vector<Link> links = std::move(h_[i].links);
     h_[i].links.clear();
-    // A receiver whose links each pass the oracle may still be wrong as a whole: each link's
-    // irradiance is pushed uniformly onto its children, and their true share varies by the
-    // links' spreads. When the sum of those variations matters, split the receiver.
-    if (!h_[i].cluster && splittable(uint32_t(i))) {
-      double variation = 0;
-      for (const Link& l : links) variation += luminance(h_[l.source].B) * l.spread;
-      if (variation * weight(h_[i]) * luminance(h_[i].rho) > eps_) {
-        h_.subdivide(uint32_t(i));
-        ++stats_.refinements;
-        for (const Link& l : links) {
-          --stats_.links;
-          for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(h_.child(h_[i], k), l.source, nullptr);
-        }
-        continue;
-      }
+    // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
+    // than its tolerance: every link goes down to the children.
+    if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
+      ++stats_.refinements;
+      ++stats_.receiver_splits;
+      for (const Link& l : links) split_link(i, l.source, true);
+      continue;
     }
+    // Each link: one that carries more than its share is refined again from here (refine splits it).
+    // A link whose every ray was blocked is first cast again with kHiddenRecast times the rays: a few
+    // rays miss a gap, and a wall between two rooms should not be refined for what they might miss.
     for (const Link& l : links) {
-      // A cluster receiver: a link whose transfer lands unevenly on the children (misplaced by the
-      // uniform push) goes down to them, alone (its siblings stay where they are accurate).
-      if (h_[i].cluster && h_[i].child_count > 0 &&
-          luminance(h_[l.source].B) * l.spread * weight(h_[i]) * luminance(h_[i].rho) > eps_) {
+      if (l.F == 0 && l.sigma > 0 && l.samples > 0 && l.samples < kHiddenRecast * s_.rays &&
+          worth_splitting(i, l.source, true, nullptr)) {
         --stats_.links;
-        ++stats_.refinements;
-        for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(h_.child(h_[i], k), l.source, nullptr);
+        ++stats_.recast;
+        pending_.push_back({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
         continue;
       }
-      const bool can = splittable(uint32_t(i)) || splittable(l.source);
-      if (can && oracle(h_[i], h_[l.source]) > eps_) {
+      if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
         --stats_.links;
-        refine(uint32_t(i), l.source, nullptr);
+        refine(i, l.source, nullptr, true);
       } else {
         h_[i].links.push_back(l);
       }

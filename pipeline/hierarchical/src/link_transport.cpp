@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "walkrad/hierarchical/directional_irradiance.h"
+
 namespace walkrad {
 
 namespace {
@@ -43,15 +45,82 @@ std::vector<double> path_sums(const Hierarchy& h, const std::vector<double>& per
   return path;
 }
 
-// Row sums of every leaf, Σ F s̄ along its path, with send factors send(node).
+// What reaches every element along its ancestors' links, as the solve pushes it (solve_sweep.cpp):
+// a cluster's transfers by direction (directional_irradiance.h), taken by the first element below it
+// by its normal; an element's split among its children by their shares (Link::share); a leaf element
+// adds its own links'. H: Σ F · value(source); row: Σ F. Parents come first in the node array.
+struct Delivery {
+  std::vector<Vec3> H;
+  std::vector<double> row;
+};
+
+template <class V>
+Delivery delivered(const Hierarchy& h, V value) {
+  const std::vector<HNode>& nodes = h.nodes();
+  size_t clusters = 0;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k].cluster) clusters = k + 1;
+  std::vector<DirectionalIrradiance> cube(clusters);
+  Delivery d{std::vector<Vec3>(nodes.size()), std::vector<double>(nodes.size(), 0.0)};
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    const HNode& n = nodes[k];
+    const int32_t parent = n.parent;
+    if (n.cluster) {
+      if (parent >= 0) cube[k] = cube[size_t(parent)];
+      for (const Link& l : n.links) cube[k].add(n, link_direction(n, h[l.source]), l.F, value(l.source));
+      continue;
+    }
+    Vec3 H;
+    double row = 0;
+    if (parent >= 0 && nodes[size_t(parent)].cluster) {
+      H = cube[size_t(parent)].at(n.normal);
+      row = cube[size_t(parent)].row(n.normal);
+    } else if (parent >= 0) {
+      const HNode& p = nodes[size_t(parent)];
+      const uint32_t slot = child_slot(h, uint32_t(k));
+      H = d.H[size_t(parent)];
+      row = d.row[size_t(parent)];
+      if (slot < 4)
+        for (const Link& l : p.links) {
+          const double f = l.F * double(l.share[slot]);
+          H += value(l.source) * f;
+          row += f;
+        }
+    }
+    if (n.child_count == 0)
+      for (const Link& l : n.links) {
+        H += value(l.source) * l.F;
+        row += l.F;
+      }
+    d.H[k] = H;
+    d.row[k] = row;
+  }
+  return d;
+}
+
+// Row sums of every leaf, Σ F s̄ along its path as the solve pushes it, with send factors send(node).
 template <class F>
 std::vector<double> row_sums(const Hierarchy& h, F send) {
   std::vector<double> mean;
   area_means(h, mean, [&](const HNode& n, size_t) { return send(n); });
-  std::vector<double> per_node(h.nodes().size(), 0.0);
-  for (size_t k = 0; k < h.nodes().size(); ++k)
-    for (const Link& l : h.nodes()[k].links) per_node[k] += l.F * mean[l.source];
-  return path_sums(h, per_node);
+  const Delivery d = delivered(h, [&](uint32_t source) { return Vec3(mean[source], mean[source], mean[source]); });
+  std::vector<double> out(d.H.size());
+  for (size_t k = 0; k < out.size(); ++k) out[k] = d.H[k].x;
+  return out;
+}
+
+// The area a link's receiver takes its transfer over, each part weighed by its share and by
+// weight(part): Σ_c A_c share_c w_c over its children (a leaf: A w).
+template <class W>
+double received_area(const Hierarchy& h, uint32_t receiver, const Link& l, W weight) {
+  const HNode& p = h[receiver];
+  if (p.child_count == 0 || p.cluster) return p.area * weight(receiver);  // a cluster: by direction, taken as even
+  double sum = 0;
+  for (uint32_t c = 0; c < p.child_count && c < 4; ++c) {
+    const uint32_t child = h.child(p, c);
+    sum += h[child].area * double(l.share[c]) * weight(child);
+  }
+  return sum;
 }
 
 // What every leaf's unit radiosity delivers per unit area, Σ F A_p ā_p / A_q along its path over the
@@ -63,7 +132,8 @@ std::vector<double> column_sums(const Hierarchy& h, F receive) {
   area_means(h, mean, [&](const HNode& n, size_t) { return receive(n); });
   std::vector<double> per_node(nodes.size(), 0.0);
   for (size_t k = 0; k < nodes.size(); ++k)  // sequential: a fixed order of sums
-    for (const Link& l : nodes[k].links) per_node[l.source] += l.F * nodes[k].area * mean[k] / nodes[l.source].area;
+    for (const Link& l : nodes[k].links)
+      per_node[l.source] += l.F * received_area(h, uint32_t(k), l, [&](uint32_t c) { return mean[c]; }) / nodes[l.source].area;
   return path_sums(h, per_node);
 }
 
@@ -102,20 +172,10 @@ std::vector<Vec3> apply_transport(const Hierarchy& h, const std::vector<Vec3>& x
   const std::vector<HNode>& nodes = h.nodes();
   std::vector<Vec3> sent;
   area_means(h, sent, [&](const HNode& n, size_t k) { return x[k] * n.send; });
-  std::vector<Vec3> down(nodes.size()), out(nodes.size());
-  std::vector<double> row(nodes.size(), 0.0);
-  for (size_t k = 0; k < nodes.size(); ++k) {  // parents first: their totals are ready
-    const HNode& n = nodes[k];
-    Vec3 H = n.parent >= 0 ? down[size_t(n.parent)] : Vec3{};
-    double r = n.parent >= 0 ? row[size_t(n.parent)] : 0.0;
-    for (const Link& l : n.links) {
-      H += sent[l.source] * l.F;
-      r += l.F;
-    }
-    down[k] = H;
-    row[k] = r;
-    if (is_leaf_element(n)) out[k] = leaf_irradiance(n, H, r);
-  }
+  const Delivery d = delivered(h, [&](uint32_t source) { return sent[source]; });
+  std::vector<Vec3> out(nodes.size());
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (is_leaf_element(nodes[k])) out[k] = leaf_irradiance(nodes[k], d.H[k], d.row[k]);
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad::hierarchical_detail {
@@ -21,7 +22,7 @@ double Solver::solve_sweep(IterationStats& is) {
   change_ = 0;
   is.emitted = is.absorbed = is.residual = Vec3{};
   is.clamped_leaves = 0;
-  push_pull(h_.root(), Vec3{}, 0.0, is);
+  push_pull(h_.root(), Vec3{}, 0.0, DirectionalIrradiance{}, is);
   if (importance_) {
     for (HNode& n : nodes) n.Ig = 0;
     for (const HNode& n : nodes)  // sequential: sums in a fixed order
@@ -35,11 +36,29 @@ void Solver::gather(HNode& n) {
   Vec3 H;
   double f = 0;
   for (const Link& l : n.links) {
-    H += (s_.indirect ? h_[l.source].Bt : h_[l.source].emission) * l.F;
+    H += sent(h_[l.source]) * l.F;
     f += l.F;
   }
   n.H = H;
   n.Fsum = f;
+  // A cluster keeps its transfers by direction (directional_irradiance.h); an element gives each child
+  // its share of every link (Link::share). Set here so that a Jacobi sweep pushes what it gathered.
+  if (n.cluster) {
+    DirectionalIrradiance& cube = cube_[size_t(&n - h_.nodes().data())];
+    cube = {};
+    for (const Link& l : n.links) cube.add(n, link_direction(n, h_[l.source]), l.F, sent(h_[l.source]));
+  }
+  for (uint32_t k = 0; k < n.child_count; ++k) {
+    HNode& c = h_[h_.child(n, k)];
+    c.Hp = Vec3{};
+    c.Fp = 0;
+    if (k >= 4 || n.cluster) continue;
+    for (const Link& l : n.links) {
+      const double share = l.F * double(l.share[k]);
+      c.Hp += sent(h_[l.source]) * share;
+      c.Fp += share;
+    }
+  }
 }
 
 void Solver::gather_subtree(uint32_t i) {
@@ -47,12 +66,12 @@ void Solver::gather_subtree(uint32_t i) {
   for (uint32_t k = 0; k < h_[i].child_count; ++k) gather_subtree(h_.child(h_[i], k));
 }
 
-Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, IterationStats& is) {
+Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {
   if (s_.gauss_seidel && !h_[i].cluster && h_[i].depth == 0) gather_subtree(i);
   HNode& n = h_[i];
-  Vec3 H = n.H + down;
-  const double row_sum = n.Fsum + down_sum;
   if (n.child_count == 0) {
+    Vec3 H = n.H + down;
+    const double row_sum = n.Fsum + down_sum;
     bool clamped = false;
     H = leaf_irradiance(n, H, row_sum, &clamped);
     if (clamped) ++is.clamped_leaves;
@@ -74,9 +93,18 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, IterationS
   Vec3 sum, sent;
   const uint32_t count = n.child_count;
   const double area = n.area;
+  DirectionalIrradiance total = cube;
+  if (n.cluster) total += cube_[i];
   for (uint32_t k = 0; k < count; ++k) {
     const uint32_t c = h_.child(h_[i], k);
-    sum += push_pull(c, H, row_sum, is) * h_[c].area;
+    const HNode& child = h_[c];
+    if (child.cluster) {
+      sum += push_pull(c, down, down_sum, total, is) * child.area;
+    } else if (n.cluster) {  // an element root: the directional irradiance, taken by its normal
+      sum += push_pull(c, down + total.at(child.normal), down_sum + total.row(child.normal), DirectionalIrradiance{}, is) * child.area;
+    } else {
+      sum += push_pull(c, down + child.Hp, down_sum + child.Fp, DirectionalIrradiance{}, is) * child.area;
+    }
     sent += h_[c].Bt * h_[c].area;
   }
   h_[i].B = area > 0 ? sum / area : Vec3{};

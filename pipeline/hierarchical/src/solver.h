@@ -4,13 +4,16 @@
 // gather and push-pull radiosity and importance (solve_sweep.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "walkrad/formfactor/punctual_lights.h"
+#include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/transmission.h"
+#include "walkrad/core/sampling.h"
 #include "walkrad/visibility/shaft.h"
 
 namespace walkrad::hierarchical_detail {
@@ -21,7 +24,9 @@ struct Pending {
   bool need_rays;   // Embree rays (against the solid scene when volume)
   int samples = 0;  // rays (or Monte Carlo samples) for this link
   bool volume = false;  // volume clusters in the shaft stand in for their polygons (volume_visibility.h)
-  double F = 0, spread = 0;
+  double F = 0;
+  float sigma = 0, open = 0;
+  std::array<float, 4> share = {1, 1, 1, 1};
   uint64_t rays = 0, grid_segments = 0;
 };
 
@@ -55,7 +60,57 @@ class Solver {
   void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress);
 
  private:
-  double weight(const HNode& n) const { return importance_ ? n.I : n.area; }
+  // --- error_estimate.cpp: what the refinement measures, and against what ---
+
+  // The white of the display (the 95th percentile of the leaves' luminance, by area times display
+  // weight, mapped to 0.9 as the exposure does) and the walkthrough's mean importance density.
+  void update_scales();
+
+  // How much a node matters to the walkthrough, in [0, 1]: 1 without importance; with it, a leaf's
+  // importance per unit area over that of a surface the views barely see (kSeenQuantile): what the
+  // views see counts fully, what only lights it by its share; a node above leaves, their largest.
+  double display_weight(uint32_t i) const;
+  static constexpr double kSeenQuantile = 0.1;
+
+  // The error allowed in a node's radiosity (luminance, W/m²): the requested relative error of what
+  // it shows, its radiosity between kDarkShare and 1 times the white, over its display weight.
+  double tolerance(uint32_t i) const;
+
+  // variation_[i] for every node with links, in parallel: how far its children's radiosity would
+  // differ from one another if its links were gathered at the children (Link::share), ρ_c |H_c − H|.
+  void measure_variation();
+
+  // spread_[i]: the range of luminance its leaves send, for every node.
+  void measure_spread();
+
+  // The error in the receiver's radiosity from taking the source's mean radiosity: its children's
+  // radiosity weighted by the kernel from the receiver against the mean (a leaf source: its own
+  // variation, half of it).
+  double source_error(const HNode& ri, const Link& l) const;
+
+  // What a node sends along its links (the gather's source term).
+  const Vec3& sent(const HNode& n) const { return s_.indirect ? n.Bt : n.emission; }
+
+  // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
+  // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
+  double transfer_estimate(const HNode& ri, const HNode& sj) const;
+
+  // A link carries too much to be left to its mean (Hanrahan, Salzman & Aupperle's BF criterion, made
+  // local): ρ_i B_j F̂_ij A_i × display weight above e × white × the quantum area. Never for a uniform
+  // source in full view (occluded: something can block between them), whose transfer the contour
+  // formula gives exactly, however much it carries: the receiver test splits it where it falls unevenly.
+  // link: the pair's link where it has been evaluated (its form factor, or for a wholly hidden one the
+  // part its rays could have missed, replaces the estimate).
+  bool worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* link = nullptr) const;
+
+  // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
+  static constexpr int kHiddenRecast = 8;
+
+  // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
+  static constexpr double kClusterCosine = 0.25;
+  // Below this share of the white, the tolerance stops falling with the radiosity (dark surfaces are
+  // held to an absolute error, not a relative one).
+  static constexpr double kDarkShare = 0.1;
 
   // τ of an element's material when transmission is simulated (else 0).
   Vec3 transmittance(const HNode& n) const {
@@ -73,15 +128,11 @@ class Solver {
 
   bool splittable(uint32_t i) const;
 
-  // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
-  // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
-  double estimate(const HNode& ri, const HNode& sj) const;
-
-  double oracle(const HNode& ri, const HNode& sj) const;
-
   // Refines the interaction of receiver i with source j: links it, drops it, or splits an end and
   // recurses. parent: the candidate occluders of the enclosing link's shaft (null: from the tree).
-  void refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent);
+  // split: split this pair whatever the tests say (refine_existing decided it with the link's own
+  // form factor, which a new pair does not have yet).
+  void refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool split = false);
 
   // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
   // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
@@ -90,8 +141,12 @@ class Solver {
   std::vector<uint32_t> occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
                                   const std::vector<uint32_t>* parent) const;
 
-  // Later rounds: links whose oracle now exceeds ε (B and I have changed) are split.
+  // Later rounds: receivers whose variation exceeds their tolerance get their links at their
+  // children; links whose source or noise error exceeds a share of it get an end split.
   void refine_existing();
+
+  // Replaces link (i ← j) by links from the children of the receiver (receiver) or of the source.
+  void split_link(uint32_t i, uint32_t j, bool receiver);
 
   // Form factors of the new links, in parallel: each link draws from its own random stream.
   void evaluate_pending(IterationStats& is);
@@ -113,12 +168,18 @@ class Solver {
     int32_t segment;
   };
 
-  // What pushing a cluster link's transfer uniformly to the receiver's children misplaces: the mean
-  // over children (by their share of samples, i.e. of area) of how far each child's own estimate lies
-  // from the link's, beyond twice its statistical error (so that a uniformly lit cluster is not split
-  // for noise). A child facing away or hidden behind others (a closed room's inner walls) gets nothing
-  // of what the others get: the link's receiver is split where that matters (refine_existing).
-  static double misplaced(const HNode& receiver, const std::vector<ClusterSample>& samples, const std::vector<double>& visible);
+  // Element to element, by the receiver's quadrants (link_evaluation.cpp).
+  void evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const;
+
+  // Which of an element's quadrants (split_element) holds a point of it.
+  static uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal, const Vec3& p);
+
+  // Link::share for a cluster receiver, from its children's facing areas (HNode::facing).
+  std::array<float, 4> cluster_shares(const HNode& ri, const HNode& sj) const;
+
+  // Link::share from Monte Carlo samples, each tagged with the receiver child it lies in.
+  static std::array<float, 4> child_shares(uint32_t children, const std::vector<ClusterSample>& samples,
+                                           const std::vector<double>& visible, double F);
 
   // The form factor kernel between two surface points, cos θ cos θ' / r² (without the constant).
   static double point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny);
@@ -144,18 +205,27 @@ class Solver {
 
   void gather_subtree(uint32_t i);
 
-  Vec3 push_pull(uint32_t i, const Vec3& down, double down_sum, IterationStats& is);
+  // down, down_sum: what the element ancestors' links push here; cube: what the cluster ancestors'
+  // links hold by direction (taken by the first element below them).
+  Vec3 push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is);
 
   double push_pull_importance(uint32_t i, double down);
 
-  // What the final links still carry above nothing: B·W·ρ·F, the error the user sees as coarse.
+  // The error each node's own links leave in its radiosity (HNode::error) and the statistics.
   void measure_left_error();
 
   Hierarchy& h_;
   const RayScene& rays_;
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
-  double eps_ = 0, min_area_ = 0, change_ = 0, change_floor_ = 0;
+  double min_area_ = 0, change_ = 0, change_floor_ = 0;
+  double white_ = 0, seen_density_ = 0;
+  bool direct_weights_ = false;  // display weights from the direct importance R (the first refinement)
+  double quantum_area_ = 0;       // a texel of the scene's typical surface: its median polygon side / 32, squared
+  std::vector<float> variation_;  // by node (measure_variation)
+  std::vector<float> spread_;     // by node: the range of its leaves' sent radiosity (measure_spread)
+  std::vector<float> weight_;     // by node: its display weight (update_scales)
+  std::vector<DirectionalIrradiance> cube_;  // by cluster node (all made at the start): its own links' gather
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;

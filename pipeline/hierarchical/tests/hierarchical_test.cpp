@@ -29,11 +29,12 @@ const std::string kCornell = std::string(WALKRAD_SOURCE_DIR) + "/examples/cornel
 
 class HierarchicalFurnace : public ::testing::TestWithParam<double> {};
 
-// The furnace (B = E / (1 − ρ) everywhere). Hierarchical radiosity pushes a link's irradiance
-// uniformly to the receiver's children, so unbalanced (as in an open scene) leaves in corners deviate
-// by a few percent (the receiver split on summed link spread bounds it). The box is closed, and a bake
-// balances closed scenes (link_transport.h): then every leaf is exact. Power is conserved either way.
-TEST_P(HierarchicalFurnace, ConvergesToEOverOneMinusRho) {
+// The furnace (B = E / (1 − ρ) everywhere), default settings. Every link's transfer varies over its
+// receiver (a face gets more from the wall beside a corner), but the transfers sum to a uniform
+// irradiance, which the refinement measures (error_estimate.cpp): nothing is refined, the six faces
+// stay whole and the solution is exact, balanced or not. (Refined by how much each link carried, a
+// ρ = 0.9 box took 54 M links; ρ = 0.99 passed 17 GB.)
+TEST_P(HierarchicalFurnace, ConvergesToEOverOneMinusRhoWithoutRefining) {
   const double rho = GetParam();
   const Scene box = test::closed_box(2.0, {rho, rho, rho}, {1, 1, 1});
   const ClusterTree tree = build_cluster_tree(box);
@@ -41,38 +42,34 @@ TEST_P(HierarchicalFurnace, ConvergesToEOverOneMinusRho) {
   for (const bool closed : {false, true}) {
     Hierarchy h(box, tree);
     HierarchicalSettings s;
-    s.epsilon = 1e-3;
-    s.tolerance = 1e-7;
     s.closed = closed;
     HierarchicalStats stats;
     solve_hierarchical(h, rays, s, stats);
     ASSERT_TRUE(stats.converged);
     const double exact = 1.0 / (1.0 - rho);
-    double sq = 0, area = 0, worst = 0;
+    double worst = 0;
     for (const HNode& n : h.nodes())
       if (!n.cluster && !n.child_count) {
         ASSERT_TRUE(is_finite(n.B));
-        sq += n.area * (n.B.x - exact) * (n.B.x - exact);
-        area += n.area;
         worst = std::max(worst, std::fabs(n.B.x - exact) / exact);
       }
-    std::printf("furnace ρ %g, %s: RMS %.2e, worst leaf %.2e\n", rho, closed ? "balanced" : "unbalanced",
-                std::sqrt(sq / area) / exact, worst);
-    if (closed) {
-      EXPECT_LT(worst, 1e-4);  // measured below 1e-7
-    } else {
-      EXPECT_LT(std::sqrt(sq / area) / exact, 0.02);  // area-weighted RMS (measured 0.8% and 1.6%)
-      EXPECT_LT(worst, 0.1);                          // corner leaves (measured 5.1% and 8.5%)
-    }
+    std::printf("furnace ρ %g, %s: worst leaf %.2e, %zu elements, %llu links\n", rho, closed ? "balanced" : "unbalanced", worst,
+                h.element_count(), static_cast<unsigned long long>(stats.links));
+    EXPECT_LT(worst, 1e-3);
+    EXPECT_EQ(h.element_count(), 6u);  // not refined
+    EXPECT_EQ(stats.links, 30u);       // face to face
     const IterationStats& last = stats.iterations.back();
-    EXPECT_NEAR(last.absorbed.x, last.emitted.x, 1e-3 * last.emitted.x);
+    EXPECT_NEAR(last.absorbed.x, last.emitted.x, 1e-4 * last.emitted.x);  // to the solver's tolerance
   }
 }
 
 // Gauss-Seidel over links (each polygon gathers this sweep's values) reaches the same solution as
-// Jacobi in fewer sweeps.
+// Jacobi in fewer sweeps. A box lit by one face (the furnace would need no refinement and, with the
+// aggregation correction, almost no sweeps), without the correction: the plain iterations compared.
 TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
-  const Scene box = test::closed_box(2.0, {0.9, 0.9, 0.9}, {1, 1, 1});
+  Scene box = test::closed_box(2.0, {0.9, 0.9, 0.9}, {0, 0, 0});
+  box.materials.push_back({"lamp", {0.5, 0.5, 0.5}, {1, 1, 1}});
+  box.polygons[1].material = 1;
   const ClusterTree tree = build_cluster_tree(box);
   const RayScene rays(box);
   double mean[2];
@@ -80,8 +77,8 @@ TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
   for (int gs = 0; gs < 2; ++gs) {
     Hierarchy h(box, tree);
     HierarchicalSettings s;
-    s.epsilon = 1e-3;
     s.tolerance = 1e-7;
+    s.accelerate = false;
     s.gauss_seidel = gs == 1;
     HierarchicalStats stats;
     solve_hierarchical(h, rays, s, stats);
@@ -93,11 +90,13 @@ TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
       if (!n.cluster && !n.child_count) sum += n.B.x * n.area, area += n.area;
     mean[gs] = sum / area;
   }
-  EXPECT_NEAR(mean[1], mean[0], 1e-3 * mean[0]);
+  // The same solution to within what refinement allows: each round refines from the radiosity its
+  // sweeps reached, so the two orders refine a little differently (measured 0.27% apart).
+  EXPECT_NEAR(mean[1], mean[0], 5e-3 * mean[0]);
   EXPECT_LT(sweeps[1], sweeps[0]);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reflectances, HierarchicalFurnace, ::testing::Values(0.5, 0.9));
+INSTANTIATE_TEST_SUITE_P(Reflectances, HierarchicalFurnace, ::testing::Values(0.5, 0.9, 0.99));
 
 // Push-pull: at every node, A·B equals the sum of A·B of its children (so every level of the
 // hierarchy holds the same power as the leaves).
@@ -107,7 +106,6 @@ TEST(Hierarchical, PushPullConservesPowerAtEveryLevel) {
   Hierarchy h(scene, tree);
   const RayScene rays(scene);
   HierarchicalSettings s;
-  s.epsilon = 1e-3;
   HierarchicalStats stats;
   solve_hierarchical(h, rays, s, stats);
   for (const HNode& n : h.nodes()) {
@@ -147,7 +145,6 @@ TEST_F(CornellHierarchical, SameResultWithOneAndTwoThreads) {
   BakeSettings a = settings("t1", "hierarchical"), b = settings("t2", "hierarchical");
   a.threads = 1;
   b.threads = 2;
-  a.epsilon = b.epsilon = 1e-4;
   bake(a);
   bake(b);
   EXPECT_EQ(read_bytes(dir_ / "t1/manifest.json"), read_bytes(dir_ / "t2/manifest.json"));

@@ -1,5 +1,8 @@
 #include "walkrad/output/surface_mesher.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -62,7 +65,7 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
 
 }  // namespace
 
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure) {
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at) {
   SurfaceMesh surface;
   if (faces.empty()) return surface;
   Bounds bounds;
@@ -157,7 +160,20 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure) {
     for (uint32_t pgn = 0; pgn < polygons; ++pgn) group[pgn] = find_root(group, pgn);
   }
 
-  // 4. Vertex radiosity: area-weighted over the faces of one group that have the vertex on their boundary.
+  // 4. Vertex radiosity: area-weighted over the faces of one group that have the vertex on their boundary,
+  // of each face's radiosity or of the solution at the vertex seen from each face (a point a thousandth
+  // of the way in towards the face's centre: on a neighbour's plane the contour formula says nothing).
+  std::vector<Vec3> value(boundary.size()), centre_value(faces.size());
+  if (at) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        const Vec3 c = polygon_centroid(faces[i].shape);
+        centre_value[i] = at(i, c);
+        for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
+          value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * 1e-3);
+      }
+    });
+  }
   std::unordered_map<uint64_t, uint32_t> slot;  // (point, group) → accumulator
   std::vector<Vec3> sum;
   std::vector<double> weight;
@@ -172,7 +188,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure) {
         slot_point.push_back(boundary[j]);
       }
       face_slots[j] = it->second;
-      sum[it->second] += faces[i].radiosity * faces[i].area;
+      sum[it->second] += (at ? value[j] : faces[i].radiosity) * faces[i].area;
       weight[it->second] += faces[i].area;
     }
   }
@@ -198,7 +214,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure) {
       if (count == 4) mesh.indices.insert(mesh.indices.end(), {v[0], v[2], v[3]});
     } else {
       const uint32_t c = uint32_t(mesh.vertex_count());
-      append_vertex(mesh, polygon_centroid(f.shape), f.normal, f.radiosity, exposure);
+      append_vertex(mesh, polygon_centroid(f.shape), f.normal, at ? centre_value[i] : f.radiosity, exposure);
       for (uint32_t j = 0; j < count; ++j) mesh.indices.insert(mesh.indices.end(), {c, v[j], v[(j + 1) % count]});
     }
     surface.triangle_polygon.resize(mesh.triangle_count(), f.polygon);

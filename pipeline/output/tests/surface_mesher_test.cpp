@@ -76,7 +76,9 @@ TEST(SurfaceMesher, KeepsMaterialBoundariesAndCreasesSharpButWatertight) {
   const SurfaceMesh w = mesh_faces(faces, 1.0);
   EXPECT_EQ(test::count_t_junctions(w.mesh, 1e-9), 0u);
   for (size_t v = 0; v < w.mesh.vertex_count(); ++v)
-    if (w.mesh.normals[3 * v + 1] > 0.5) EXPECT_FLOAT_EQ(w.mesh.radiosity[3 * v], 7.0f);  // the wall's own value
+    if (w.mesh.normals[3 * v + 1] > 0.5) {
+      EXPECT_FLOAT_EQ(w.mesh.radiosity[3 * v], 7.0f);  // the wall's own value
+    }
 }
 
 TEST(SurfaceMesher, IsDeterministic) {

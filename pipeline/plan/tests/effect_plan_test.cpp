@@ -82,7 +82,6 @@ class EffectPlanBake : public test::TempDirTest {
     s.scene = file;
     s.output = (dir_ / name).string();
     s.method = method;
-    s.epsilon = 1e-3;
     s.element_size = 0.125;
     s.progress = false;
     s.effects = std::move(effects);
@@ -138,7 +137,9 @@ TEST_F(EffectPlanBake, NonReflectingSceneIsDirectOnlyAndMatchesTheFullSolve) {
     const nlohmann::json forced = bake_scene(lit_box(0.0), "forced-" + method, method, {{"indirect", "on"}});
     EXPECT_FALSE(planned["effects"]["indirect"]["on"].get<bool>()) << method;
     EXPECT_EQ(largest_difference("planned-" + method, "forced-" + method), 0.0) << method;
-    if (method == "classic") EXPECT_EQ(planned["counts"]["iterations"].get<int>(), 1);
+    if (method == "classic") {
+      EXPECT_EQ(planned["counts"]["iterations"].get<int>(), 1);
+    }
   }
   // Direct light only, forced on a reflecting box: darker than the full solve (no interreflection).
   bake_scene(lit_box(0.5), "direct", "hierarchical", {{"indirect", "off"}});
@@ -154,7 +155,7 @@ TEST_F(EffectPlanBake, NoViewpointsNoImportance) {
   const nlohmann::json r = bake_scene(box_with_block(), "no-views", "hierarchical");
   EXPECT_FALSE(r["effects"]["importance"]["on"].get<bool>());
   EXPECT_EQ(r["counts"]["importance_rays"].get<uint64_t>(), 0u);
-  EXPECT_EQ(r["solver"]["oracle"].get<std::string>(), "BF");
+  EXPECT_EQ(r["solver"]["oracle"].get<std::string>(), "view-independent");
   EXPECT_THROW(bake_scene(box_with_block(), "forced", "hierarchical", {{"importance", "on"}}), InputError);
 }
 
@@ -174,24 +175,30 @@ double balance(const nlohmann::json& report) {
   return a / m;
 }
 
-// A closed scene: every leaf sends all its power through its links (hierarchical_solver.h, closed):
-// the power balance closes, where without it coarse links lose some.
-TEST_F(EffectPlanBake, ClosedSceneKeepsItsPower) {
+// A closed scene: the plan says so, and forced on (--effect closure=on) every leaf sends all its power
+// through its links, so the power balance closes. By default it is not balanced: the box's lamp (ρ = 0)
+// shows nothing it receives, so its links from the walls are never refined and take the walls' mean
+// radiosity; its absorption, hence the balance, is off by a few percent, while every surface that
+// reflects gets a row sum near 1 (docs/numerics.md, "Closed scenes").
+TEST_F(EffectPlanBake, ClosedSceneKeepsItsPowerWhenBalanced) {
   const nlohmann::json planned = bake_scene(box_with_block(), "closed", "hierarchical");
-  const nlohmann::json off = bake_scene(box_with_block(), "open", "hierarchical", {{"closure", "off"}});
-  EXPECT_TRUE(planned["effects"]["closure"]["on"].get<bool>());
-  EXPECT_NEAR(balance(planned), 1.0, 0.01);
-  EXPECT_GT(std::fabs(balance(off) - 1.0), std::fabs(balance(planned) - 1.0));
-  // The block's bottom on the floor does not open the box: balanced as well.
-  const nlohmann::json pressed = bake_scene(box_with_closed_block(), "pressed", "hierarchical");
+  const nlohmann::json on = bake_scene(box_with_block(), "balanced", "hierarchical", {{"closure", "on"}});
+  EXPECT_FALSE(planned["effects"]["closure"]["on"].get<bool>());
+  EXPECT_NE(planned["effects"]["closure"]["reason"].get<std::string>().find("closed"), std::string::npos);
+  EXPECT_NEAR(balance(on), 1.0, 0.01);
+  EXPECT_NEAR(balance(planned), 1.0, 0.03);
+  // The block's bottom on the floor does not open the box.
+  const nlohmann::json pressed = bake_scene(box_with_closed_block(), "pressed", "hierarchical", {{"closure", "on"}});
   EXPECT_TRUE(pressed["effects"]["closure"]["on"].get<bool>());
   EXPECT_NE(pressed["effects"]["closure"]["reason"].get<std::string>().find("pressed"), std::string::npos);
-  std::printf("absorbed / emitted: closed %.6f, off %.6f, pressed %.6f\n", balance(planned), balance(off), balance(pressed));
+  std::printf("absorbed / emitted: default %.6f, balanced %.6f, pressed and balanced %.6f\n", balance(planned), balance(on),
+              balance(pressed));
   EXPECT_NEAR(balance(pressed), 1.0, 0.01);
   // An open box (one wall removed) is not closed.
   Scene open = box_with_block();
   open.polygons.erase(open.polygons.begin() + 1);
-  EXPECT_FALSE(bake_scene(open, "no-lid", "hierarchical")["effects"]["closure"]["on"].get<bool>());
+  EXPECT_EQ(bake_scene(open, "no-lid", "hierarchical")["effects"]["closure"]["reason"].get<std::string>().find("closed"),
+            std::string::npos);
 }
 
 }  // namespace

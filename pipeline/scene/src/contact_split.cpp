@@ -74,6 +74,47 @@ void contact_cuts(const Polygon& q, const Vec3& qn, const Polygon& p, double tol
   }
 }
 
+// A cover: polygon p parallel to q, in front of it within kCoverGap of the smaller one's size (a lamp
+// hung just under a ceiling, a box resting a hair above a floor). The strip of q under p is dark and
+// seen by nothing; its corners must not be averaged with the lit ones around it.
+constexpr double kCoverGap = 0.02;
+
+// p's corners projected on q's plane, when p covers q (else empty).
+Loop cover_footprint(const Polygon& q, const Vec3& qn, const Polygon& p, double tol) {
+  const Vec3 pn = polygon_normal(p);
+  if (std::fabs(dot(pn, qn)) < 1 - 1e-6) return {};
+  const double gap = dot(p.v[0] - q.v[0], qn);
+  const double size = std::sqrt(std::min(polygon_area(p), polygon_area(q)));
+  if (gap <= tol || gap > kCoverGap * size) return {};
+  Loop out;
+  for (int k = 0; k < p.count; ++k) out.push_back(p.v[k] - qn * dot(p.v[k] - q.v[0], qn));
+  if (dot(pn, qn) < 0) std::reverse(out.begin(), out.end());  // counter-clockwise seen along qn
+  return out;
+}
+
+// Cuts along a cover's footprint edges that cross q's interior.
+void cover_cuts(const Polygon& q, const Vec3& qn, const Loop& footprint, double tol, std::vector<Cut>& cuts) {
+  for (size_t k = 0; k < footprint.size(); ++k) {
+    // The edge as a triangle standing on q's plane, handed to contact_cuts.
+    Polygon e;
+    e.count = 3;
+    const Vec3 a = footprint[k], b = footprint[(k + 1) % footprint.size()];
+    e.v = {a, b, b + qn * (10 * tol + length(b - a)), Vec3{}};
+    const size_t before = cuts.size();
+    contact_cuts(q, qn, e, tol, cuts);
+    // Keep only the cut made by the edge (a, b) itself.
+    for (size_t c = before; c < cuts.size();)
+      if (std::fabs(dot(cuts[c].n, a) - cuts[c].d) <= tol && std::fabs(dot(cuts[c].n, b) - cuts[c].d) <= tol) ++c;
+      else cuts.erase(cuts.begin() + long(c));
+  }
+}
+
+bool inside(const Loop& footprint, const Vec3& normal, const Vec3& x) {
+  for (size_t k = 0; k < footprint.size(); ++k)
+    if (dot(cross(footprint[(k + 1) % footprint.size()] - footprint[k], x - footprint[k]), normal) <= 0) return false;
+  return true;
+}
+
 void emit_loop(const Loop& l, const Polygon& like, std::vector<Polygon>& out) {
   // A fan of quads (and a last triangle) from l[0]: convex pieces of a convex loop.
   for (size_t k = 1; k + 1 < l.size(); k += 2) {
@@ -100,14 +141,20 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
   const ClusterTree tree = build_cluster_tree(scene);
 
   std::vector<Cut> cuts;
+  std::vector<Loop> covers;
   std::vector<int32_t> stack;
+  std::vector<int32_t> covered_material(scene.materials.size(), -1);  // q's material → its covered copy
   for (uint32_t qi = 0; qi < scene.polygons.size(); ++qi) {
     const Polygon& q = scene.polygons[qi];
     const Vec3 qn = polygon_normal(q);
     Bounds qb = polygon_bounds(q);
-    qb.extend(qb.lo - Vec3(tol, tol, tol));
-    qb.extend(qb.hi + Vec3(tol, tol, tol));
+    // Near enough for a cover: the gap it may leave (kCoverGap of q's size; the test in cover_footprint
+    // is against the smaller of the two).
+    const double reach = std::max(tol, kCoverGap * std::sqrt(polygon_area(q)));
+    qb.extend(qb.lo - Vec3(reach, reach, reach));
+    qb.extend(qb.hi + Vec3(reach, reach, reach));
     cuts.clear();
+    covers.clear();
     // Polygons whose bounds touch q's (a tree query), in tree order: deterministic.
     stack.assign(1, 0);
     while (!stack.empty() && !tree.nodes.empty()) {
@@ -116,10 +163,18 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
       const Bounds& b = node.bounds;
       if (b.hi.x < qb.lo.x || b.lo.x > qb.hi.x || b.hi.y < qb.lo.y || b.lo.y > qb.hi.y || b.hi.z < qb.lo.z || b.lo.z > qb.hi.z) continue;
       if (!node.leaf()) { stack.push_back(node.child[1]); stack.push_back(node.child[0]); continue; }
-      for (uint32_t i = node.first; i < node.first + node.count; ++i)
-        if (tree.polygons[i] != qi) contact_cuts(q, qn, scene.polygons[tree.polygons[i]], tol, cuts);
+      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+        if (tree.polygons[i] == qi) continue;
+        const Polygon& p = scene.polygons[tree.polygons[i]];
+        contact_cuts(q, qn, p, tol, cuts);
+        Loop footprint = cover_footprint(q, qn, p, tol);
+        if (!footprint.empty()) {
+          cover_cuts(q, qn, footprint, tol, cuts);
+          covers.push_back(std::move(footprint));
+        }
+      }
     }
-    if (cuts.empty()) {
+    if (cuts.empty() && covers.empty()) {
       out.polygons.push_back(q);
       continue;
     }
@@ -161,7 +216,26 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
       ++stats.polygons_split;
       stats.cuts += applied;
     }
-    for (const Loop& l : pieces) emit_loop(l, q, out.polygons);
+    for (const Loop& l : pieces) {
+      // A piece under a cover takes a copy of its material: the same surface, its own smoothing
+      // group (the mesher averages vertices only within a material).
+      Polygon like = q;
+      Vec3 centre;
+      for (const Vec3& v : l) centre += v / double(l.size());
+      bool under = false;
+      for (const Loop& f : covers) under = under || inside(f, qn, centre);
+      if (under) {
+        int32_t& m = covered_material[q.material];
+        if (m < 0) {
+          out.materials.push_back(scene.materials[q.material]);
+          out.materials.back().name += " (covered)";
+          m = int32_t(out.materials.size() - 1);
+        }
+        like.material = uint32_t(m);
+        ++stats.covered;
+      }
+      emit_loop(l, like, out.polygons);
+    }
   }
   return out;
 }

@@ -15,6 +15,24 @@ void check(RTCDevice device, const char* what) {
   if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree: ") + what + " failed (error " + std::to_string(int(e)) + ")");
 }
 
+// An intersect context that passes only front faces (rtcInitIntersectContext's filter slot; the scene
+// allows context filters): Embree hands the context back to the filter, which reads the normals.
+struct FrontFacesOnly {
+  RTCIntersectContext context;
+  const std::vector<Vec3>* normals;
+};
+
+void keep_front_faces(const RTCFilterFunctionNArguments* args) {
+  const auto* self = reinterpret_cast<const FrontFacesOnly*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const Vec3& n = (*self->normals)[RTCHitN_primID(args->hit, args->N, i)];
+    const Vec3 d(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                 RTCRayN_dir_z(args->ray, args->N, i));
+    if (dot(n, d) >= 0) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 RayScene::RayScene(const Scene& scene) { build(scene, nullptr); }
@@ -36,7 +54,7 @@ void RayScene::build(const Scene& scene, const std::vector<uint8_t>* exclude) {
   device_ = rtcNewDevice("verbose=0");
   if (!device_) throw std::runtime_error("Embree: cannot create a device");
   scene_ = rtcNewScene(device_);
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
   // Origin, scale and offset come from the whole scene: a solid scene answers like the full one.
@@ -58,8 +76,10 @@ void RayScene::add_quads(const Scene& scene, const std::vector<uint32_t>& kept) 
   auto* quads = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
                                                                4 * sizeof(unsigned), n));
   check(device_, "allocating geometry");
+  prim_normal_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Polygon& p = scene.polygons[kept[i]];
+    prim_normal_[i] = cross(p.v[1] - p.v[0], p.v[2] - p.v[0]);
     for (int k = 0; k < 4; ++k) {
       const Vec3 v = (p.v[std::min(k, p.count - 1)] - origin_) * scale_;
       vertices[(4 * i + k) * 3 + 0] = float(v.x);
@@ -131,6 +151,19 @@ RayScene::Hit RayScene::intersect(const Vec3& origin, const Vec3& direction) con
   rtcIntersect1(scene_, &ctx, &rh);
   Hit h;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+  if (dot(prim_normal_[rh.hit.primID], direction) >= 0) {
+    // A back face: look again for a front face within the offset of it, on either side.
+    const float t = rh.ray.tfar, dt = float(offset_ / std::max(length(direction), 1e-300));
+    RTCRayHit front = rh;
+    front.ray.tnear = std::max(0.0f, t - dt);
+    front.ray.tfar = t + dt;
+    front.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    FrontFacesOnly only{{}, &prim_normal_};
+    rtcInitIntersectContext(&only.context);
+    only.context.filter = keep_front_faces;
+    rtcIntersect1(scene_, &only.context, &front);
+    if (front.hit.geomID != RTC_INVALID_GEOMETRY_ID) rh = front;
+  }
   h.hit = true;
   h.polygon = prim_polygon_.empty() ? rh.hit.primID : prim_polygon_[rh.hit.primID];
   h.position = origin + direction * double(rh.ray.tfar);

@@ -112,5 +112,30 @@ TEST(ShaftCulling, UnobstructedPairsCastNoRays) {
   for (size_t i = 0; i < fc.rows(); ++i) EXPECT_NEAR(fc.row_sum(i), fa.row_sum(i), 0.05) << i;
 }
 
+// A wall modelled as two coincident polygons back to back (one faces each room): a ray meets the face
+// that looks at it, whichever order the polygons come in and from either side.
+TEST(RayScene, CoincidentBackToBackPolygonsShowTheirFrontFace) {
+  for (int order = 0; order < 2; ++order) {
+    Scene s;
+    s.materials.push_back({"wall", {0.5, 0.5, 0.5}, {}});
+    const Polygon facing_minus_x = test::quad({1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, 0);
+    Polygon facing_plus_x = facing_minus_x;
+    std::swap(facing_plus_x.v[1], facing_plus_x.v[3]);
+    ASSERT_LT(polygon_normal(facing_minus_x).x, 0);
+    ASSERT_GT(polygon_normal(facing_plus_x).x, 0);
+    s.polygons = order == 0 ? std::vector<Polygon>{facing_minus_x, facing_plus_x}
+                            : std::vector<Polygon>{facing_plus_x, facing_minus_x};
+    const RayScene rays(s);
+    for (double y : {0.1, 0.37, 0.5, 0.9}) {
+      const RayScene::Hit from_left = rays.intersect({0, y, 0.4}, {1, 0.01, 0.02});
+      ASSERT_TRUE(from_left.hit);
+      EXPECT_LT(polygon_normal(s.polygons[from_left.polygon]).x, 0) << "order " << order << " y " << y;
+      const RayScene::Hit from_right = rays.intersect({2, y, 0.6}, {-1, -0.01, 0.03});
+      ASSERT_TRUE(from_right.hit);
+      EXPECT_GT(polygon_normal(s.polygons[from_right.polygon]).x, 0) << "order " << order << " y " << y;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace walkrad

@@ -1,4 +1,4 @@
-// walkrad sweep: what accuracy costs. Bakes a scene over a range of ε (hierarchical, view-independent
+// walkrad sweep: what accuracy costs. Bakes a scene over a range of requested errors (hierarchical, view-independent
 // and importance-driven) and of element sizes (classic), each bake a child process (bake_process.h)
 // for its own time and peak memory; measures each against the independent reference (reference_tracer.h)
 // at sample points seen from the walkthrough (view_samples.h) and in images from its viewpoints
@@ -18,7 +18,7 @@ struct SweepSettings {
   std::string output;   // the sweep folder (staged, swapped into place when complete)
   std::string command;  // the command line, recorded in sweep.json and the report
   std::vector<std::string> methods = {"classic", "hierarchical", "importance"};
-  std::vector<double> epsilons = {1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
+  std::vector<double> errors = {0.4, 0.2, 0.1, 0.05};  // hierarchical --error values (the quality presets)
   std::vector<double> element_sizes;  // classic, metres; empty: the scene's diagonal / {10, 15, 21, 30}
   double min_area = 0;                // hierarchical --min-area (0: the bake's default)
   size_t points = 2048;               // reference sample points, over up to max_views viewpoints
@@ -28,6 +28,8 @@ struct SweepSettings {
   size_t image_views = 4;             // viewpoints with an image
   int image_samples = 1024;           // paths per pixel
   uint64_t seed = 1;
+  std::vector<std::string> measure;   // bake folders made elsewhere, measured too (not timed; method "measured")
+  std::string reference;              // an earlier sweep's folder whose reference.bin to reuse (same key)
   int threads = 0;                    // for the bakes and the reference (0: all cores)
   bool plots = true;                  // run the plotting script (python3-matplotlib)
   bool keep_bakes = false;

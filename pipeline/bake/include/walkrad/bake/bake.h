@@ -17,12 +17,14 @@ namespace walkrad {
 struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
-  bool view_independent = false;  // ignore viewpoints for refinement (BF oracle); exposure still uses them
+  bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
   std::string solver = "gauss-seidel";  // hierarchical: "gauss-seidel" (by input polygon) or "jacobi"
-  double epsilon = 1e-5;    // hierarchical: refine while B·I·ρ·F (or B·A·ρ·F) > ε × emitted power
-  double min_area = 0;      // hierarchical: smallest element, m² (0: (scene diagonal / 256)²)
+  // hierarchical: the relative error each surface may show (where the walkthrough looks, with
+  // importance), e.g. 0.02 for 2%; quality_error() maps the named presets to it.
+  double error = 0.1;
+  double min_area = 0;      // hierarchical: smallest element, m² (0: the median polygon's side / 128, squared)
   double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30
   int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
   double exposure = 0;      // 0: automatic from the viewpoints
@@ -54,6 +56,10 @@ struct BakeSummary {
   double exposure = 1;
   double seconds = 0;
 };
+
+// The requested relative error of a named quality: draft, medium, high (the default), final.
+// Throws InputError (exit 2) for another name.
+double quality_error(const std::string& quality);
 
 // Throws InputError (bad scene or walkthrough), OutputError (cannot write), std::runtime_error.
 BakeSummary bake(const BakeSettings& settings);

@@ -4,18 +4,17 @@
 // that refinement goes where the walkthrough looks); Smits, Arvo & Greenberg 1994 and Sillion 1995
 // (clusters as isotropic volumes of small surfaces: mean projected area A/4).
 //
-// The loop starts from one link of the root cluster to itself and repeats
-//   refine:    split link (i ← j) while  B_j · W_i · ρ_i · F_ij > ε Φ
-//              (W_i = importance I_i with viewpoints, area A_i without: the BF oracle; Φ = emitted
-//              power), dividing the end with the larger bounds, until elements reach the minimum
-//              area or the depth limit; and split a receiver whose links together misplace more
-//              than ε: Σ_j B_j · spread_ij · W_i · ρ_i, spread_ij being how much the point form
-//              factor to j varies over the receiver (each link's irradiance is pushed uniformly
-//              to the children; near corners their true shares differ, and row sums drift from 1);
-//   evaluate:  new links' form factors with visibility (shaft culling, then Embree rays), in parallel;
-//   solve:     gather H_i = Σ F_ij B_j along links (Gauss-Seidel by input polygon, or Jacobi), push-pull (irradiance pushed down, B = E + ρH at
-//              the leaves, B area-averaged up), and importance shot along the same links
-//              (I_j += ρ_i F_ij I_i), pushed down by area and summed up;
+// The loop starts from one link of the root cluster to itself, linked down only as far as clusters
+// must be (a cluster closer to the other end than half its radius), and repeats
+//   evaluate:  new links' form factors with visibility (shaft culling, then Embree rays), in parallel,
+//              each with how its transfer falls on the receiver's children and its standard error;
+//   solve:     gather H_i = Σ F_ij B_j along links (Gauss-Seidel by input polygon, or Jacobi), push-pull
+//              (irradiance pushed down, B = E + ρH at the leaves, B area-averaged up), and importance
+//              shot along the same links (I_j += ρ_i F_ij I_i), pushed down by area and summed up;
+//   refine:    measure the error each receiver is left with (error_estimate.cpp): the variation of its
+//              transfers over its children, the sources' unresolved detail, the estimates' noise;
+//              where it exceeds the tolerance, e × what the receiver shows / its display weight (the
+//              importance from the views; 1 without), split the receiver or the source;
 // until no link is refined and the radiosity stops changing.
 #pragma once
 
@@ -32,13 +31,12 @@
 namespace walkrad {
 
 struct HierarchicalSettings {
-  double epsilon = 1e-4;      // refinement threshold, relative to the emitted power
-  bool use_importance = true; // importance oracle when the hierarchy has view hits; else BF
-  double min_area = 0;        // m²; elements are not split below it (0: (scene diagonal / 256)²)
+  double error = 0.1;         // tolerance, relative to what each surface shows (error_estimate.cpp)
+  bool use_importance = true; // weigh tolerances by importance when the hierarchy has view hits
+  double min_area = 0;        // m²; elements are not split below it (0: default_min_area)
   int max_depth = 16;         // quadtree levels below an input polygon
   int rays = 16;              // visibility rays (or Monte Carlo samples) per link, ×2 with more than 4
-                              // candidate occluders, ×4 with more than 64, ×2 when the link is kept
-                              // above ε because neither end may split
+                              // candidate occluders, ×4 with more than 64
   double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps
   int max_iterations = 64;    // refine + solve rounds
   int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
@@ -54,7 +52,7 @@ struct HierarchicalSettings {
   // Gauss-Seidel at high reflectance (furnace ρ 0.99: 611 sweeps without).
   bool accelerate = true;
   // Punctual lights (punctual_lights.h), shot straight to the elements: an element is split while the
-  // irradiance they give varies over it by more than ε allows (ρ · spread · W > ε Φ). Not owned.
+  // irradiance they give varies over it by more than its tolerance allows (ρ · spread). Not owned.
   const std::vector<PunctualLight>* lights = nullptr;
   // Transmission twins per polygon (walkrad/scene/transmission_twins.h; kNoTwin: none): a leaf of a transmitting polygon
   // adds τ × what its twin receives at its centroid. No aggregation correction then. Not owned.
@@ -81,10 +79,13 @@ struct HierarchicalStats {
   std::vector<IterationStats> iterations;
   uint64_t links = 0, rays = 0, unoccluded_links = 0, monte_carlo_links = 0;
   uint64_t refinements = 0;            // links split
+  uint64_t receiver_splits = 0;        // receivers whose links went down to their children (variation)
+  uint64_t recast = 0;                 // wholly hidden links cast again with more rays
   bool converged = false;
-  double epsilon_absolute = 0;         // ε Φ, in W
-  std::string oracle;                  // "importance" or "BF"
-  double left_error_max = 0, left_error_sum = 0;  // B·W·ρ·F left on the final links (W)
+  std::string oracle;                  // "importance" or "view-independent"
+  double white = 0;                    // the display white the tolerances were relative to (W/m²)
+  double min_area = 0;                 // the smallest element allowed (m²)
+  uint64_t above_tolerance = 0;        // receivers left above their tolerance (at the minimum area)
   int corrections = 0;                 // aggregation corrections applied
   uint64_t light_rays = 0;             // shadow rays towards punctual lights
   uint64_t light_refinements = 0;      // elements split for the punctual lights' variation
@@ -97,6 +98,9 @@ struct HierarchicalStats {
   uint64_t exact_links = 0, volume_links = 0;
   uint64_t grid_segments = 0;          // transmittance integrations through the extinction grid
 };
+
+// The default smallest element: the median input polygon's side (by area) / 128, squared.
+double default_min_area(const Hierarchy& h);
 
 // progress(message) is called after each round (may be empty).
 void solve_hierarchical(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& settings, HierarchicalStats& stats,

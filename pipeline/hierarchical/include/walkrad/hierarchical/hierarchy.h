@@ -8,6 +8,7 @@
 // 1992), which is extensive: a parent's importance is the sum of its children's.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -18,12 +19,20 @@ namespace walkrad {
 
 // A transfer: the receiver gathers H += F · B_source. F is the form factor from the receiver to the
 // source (visibility included), for clusters with the isotropic mean projected area A/4.
+// share[k]·F is the form factor from the receiver's child k (an element's quadrants in split_element
+// order, a cluster's children; at most 4) to the source: how unevenly the transfer falls on the
+// receiver. The solve pushes each child its share (a cluster's books get the light their spines and
+// tops face, not the cluster's mean), and the refinement measures how far the shares leave the
+// children apart. Deviations from 1 that the link's samples cannot tell from noise (within 2 standard
+// errors) are shrunk to 1; the shares' area mean over the children is 1 (the transfer's power is F).
 struct Link {
-  uint32_t source = 0;
   double F = 0;
-  double spread = 0;  // how much the point form factor varies over the receiver: its range over an
-                      // element, its mean deviation between a cluster's children (transfer misplaced
-                      // by pushing it uniformly)
+  uint32_t source = 0;
+  float sigma = 0;  // standard error of F from its visibility and Monte Carlo samples (0: exact)
+  float open = 0;   // the unoccluded form factor: F / open is the fraction of the source the receiver sees
+  std::array<float, 4> share = {1, 1, 1, 1};
+  uint8_t rays = 0;  // 1: visibility by Embree rays (something can block), 2: through volumes (Pending's flags)
+  uint16_t samples = 0;  // the rays (or Monte Carlo samples) it was evaluated with
 };
 
 struct HNode {
@@ -40,8 +49,13 @@ struct HNode {
   Polygon shape;          // element
   Vec3 normal;            // element
   Vec3 rho, emission;     // element; cluster: area averages (used by the refinement oracle)
+  // Area facing each way: Σ A_k max(0, ±n_k·axis) over its surfaces, in the order +x −x +y −y +z −z.
+  // projected_area() from it gives how much of the node a direction meets (a cluster's orientation).
+  std::array<float, 6> facing = {};
 
-  Vec3 B, H;              // radiosity, irradiance gathered this iteration
+  Vec3 B, H;              // radiosity, irradiance gathered this iteration along its own links
+  Vec3 Hp;                // irradiance its parent's links push to it this iteration (their shares of it)
+  double Fp = 0;          // and their form factors, so weighted (its share of the parent's row sum)
   Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
   double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
   double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
@@ -50,6 +64,7 @@ struct HNode {
   Vec3 Hl;                // leaf element: the irradiance its links and its ancestors' gave, last solved
   bool D_known = false;   // D computed (new elements get theirs before they are solved)
   double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
+  float error = 0;        // the error its own links leave in its radiosity (luminance, W/m²; error_estimate.cpp)
   double R = 0;           // direct importance (leaf elements; summed up in clusters)
   double I = 0, Ig = 0;   // importance, importance gathered this iteration
   uint32_t hit_begin = 0, hit_end = 0;  // element: its view hits, Hierarchy::hits()[begin, end)
@@ -115,6 +130,27 @@ class Hierarchy {
   std::vector<uint32_t> polygon_root_;        // grouped by element, each element's hits contiguous
   size_t element_count_ = 0;
 };
+
+// Σ A_k max(0, n_k·d) over a node's surfaces for a unit direction d, from HNode::facing (exact where the
+// surfaces face along the axes, close otherwise).
+inline double projected_area(const HNode& n, const Vec3& d) {
+  return std::fabs(d.x) * n.facing[d.x > 0 ? 0 : 1] + std::fabs(d.y) * n.facing[d.y > 0 ? 2 : 3] +
+         std::fabs(d.z) * n.facing[d.z > 0 ? 4 : 5];
+}
+
+// The four children of an element as Hierarchy::subdivide makes them: a quad by its bilinear
+// midpoints, a triangle by its edge midpoints (the fourth child the middle one).
+std::array<Polygon, 4> split_element(const Polygon& shape);
+
+// The areas of the receiver's children that Link::share refers to (an element not yet split: its
+// quadrants); returns their count (0 for a leaf cluster without children).
+uint32_t share_areas(const Hierarchy& h, uint32_t receiver, std::array<double, 4>& areas);
+
+// Scales a link's shares so that their area mean over the receiver's children is 1.
+void normalize_shares(const Hierarchy& h, uint32_t receiver, Link& link);
+
+// Which child of its parent a node is (0 for the root).
+uint32_t child_slot(const Hierarchy& h, uint32_t node);
 
 // The leaf element containing a point of an input polygon (the gather at a point, transmission, tests).
 // (max_depth: stop at that quadtree depth even if the node there has children.)

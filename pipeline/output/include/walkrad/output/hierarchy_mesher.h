@@ -1,15 +1,28 @@
 // From the hierarchy's solution to a displayable mesh: the leaves of every element quadtree are the
 // faces of a crack-free Gouraud mesh (surface_mesher.h: T-vertices anchored, vertex radiosity averaged
-// over the leaves around each vertex, within a smoothing group).
+// over the leaves around each vertex, within a smoothing group; or the solution evaluated at each vertex).
 #pragma once
+
+#include <cstdint>
+#include <vector>
 
 #include "walkrad/formats/chunk.h"
 #include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/visibility/ray_scene.h"
 #include "walkrad/output/surface_mesher.h"
 
 namespace walkrad {
 
+// How vertices take the solution (point_radiosity.h). Off: the leaves' mean radiosity.
+struct PointSolution {
+  bool on = false;
+  bool indirect = true;                         // sources send B (else their emission only)
+  const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none) keep their mean
+  const std::vector<PunctualLight>* lights = nullptr;  // shot at every vertex (null: the leaves' mean)
+  const RayScene* rays = nullptr;               // their occluders (null: none)
+};
+
 // exposure: display colour = B/π × exposure, clamped to [0, 1].
-SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure);
+SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolution& point = {});
 
 }  // namespace walkrad

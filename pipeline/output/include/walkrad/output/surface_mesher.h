@@ -6,13 +6,14 @@
 // fanned from its centre. So no output edge has a vertex inside it: watertight, no cracks, no pixel
 // dropouts, and both sides of a shared edge interpolate between the same two vertices.
 //
-// A vertex's radiosity is the area-weighted average of the faces that have it on their boundary,
-// within one smoothing group: polygons of one material, facing the same way, that touch (so a floor
+// A vertex's radiosity is the area-weighted average over the faces that have it on their boundary (of
+// their radiosity, or of the solution evaluated at the vertex from each face), within one smoothing group: polygons of one material, facing the same way, that touch (so a floor
 // cut into several polygons is smooth across its cuts). At a crease or a material boundary each side
 // keeps its own vertices: radiosity is discontinuous there physically.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "walkrad/formats/scene.h"
@@ -38,8 +39,13 @@ struct MeshFace {
   uint32_t polygon = 0;  // the (contact-split) scene polygon it lies on
 };
 
-// exposure: display colour = B/π × exposure, clamped to [0, 1]. Deterministic: the output depends only
-// on the faces and their order.
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure);
+// B at a point of face i (a corner nudged into the face, or its centre), where the solution can say
+// more than its face's mean (point_radiosity.h).
+using FaceRadiosity = std::function<Vec3(size_t face, const Vec3& point)>;
+
+// exposure: display colour = B/π × exposure, clamped to [0, 1]. at: when given, each vertex takes the
+// area-weighted mean of at(face, point) over its faces instead of their mean radiosity. Deterministic:
+// the output depends only on the faces and their order.
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at = {});
 
 }  // namespace walkrad

@@ -5,8 +5,9 @@
 //                 front of every other polygon's plane, so no segment between two of them crosses a third);
 //   importance  — only with viewpoints (and not --view-independent);
 //   clusters    — the hierarchical method's cluster links (always with it; none in the classic method);
-//   closure     — a closed scene (no ray from any surface escapes: every form factor row sums to 1),
-//                 where the hierarchical method balances each leaf's gather and send (link_transport.h);
+//   closure     — balance each leaf's gather and send in a closed scene (no ray from any surface
+//                 escapes: every form factor row sums to 1; link_transport.h). Off unless forced on: the
+//                 plan says whether the scene is closed;
 //   punctual    — point and spot lights (glTF KHR_lights_punctual), shot straight to the elements
 //                 (punctual_lights.h); off ignores them;
 //   transmission — diffuse transmission where a material transmits (transmission.h; hierarchical

@@ -40,6 +40,10 @@ class RayScene {
     uint32_t polygon = 0;
     Vec3 position;
   };
+  // The first surface along the ray. Where it meets a back face that has a front face coincident
+  // with it (within offset(): a wall modelled as two polygons back to back, a doubleSided quad made two
+  // polygons), the front face is the hit, whichever of the two Embree met first: every query that
+  // shades (reference, bake sampler, exposure, importance) then sees the side that faces it.
   Hit intersect(const Vec3& origin, const Vec3& direction) const;
 
   // The distance by which ray end points leave their surfaces: small against the scene, large
@@ -56,6 +60,7 @@ class RayScene {
   double scale_ = 1;  // then multiplied by this power of two
   double offset_ = 0;
   std::vector<uint32_t> prim_polygon_;  // with excluded polygons: Embree primitive → polygon
+  std::vector<Vec3> prim_normal_;       // each primitive's front (counter-clockwise) normal, unnormalised
 };
 
 }  // namespace walkrad

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Issue 22's figures: what the requested error delivers, measured by `walkrad sweep` against its
+path-traced reference (never against another bake). Prints the tables of docs/accuracy.md's "Error
+control" section.
+
+- Cornell box (its camera): --errors 0.4,0.2,0.1,0.05, importance-driven and view-independent;
+  reference 1,024 points × 131,072 paths.
+- office-floor with 2, 4, 8 and 16 rooms (--detail 0.05), the walkthrough in the same two rooms:
+  the default error (0.1), both methods (8 rooms also 0.2); reference 1,024 points × 65,536 paths.
+
+References are cached in OUT/<scene>-ref (sweep --reference) and reused by later runs.
+
+Usage: bench/error_control.py [BUILD_DIR] [OUT] [PARTS]   (default build, build/bench-error,
+       cornell,office; e.g. PARTS=office:2,4 for two sizes only)"""
+import json
+import os
+import subprocess
+import sys
+
+build = sys.argv[1] if len(sys.argv) > 1 else "build"
+out = sys.argv[2] if len(sys.argv) > 2 else os.path.join(build, "bench-error")
+parts = (sys.argv[3] if len(sys.argv) > 3 else "cornell,office").split(",")
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+walkrad = os.path.join(build, "pipeline/walkrad")
+os.makedirs(out, exist_ok=True)
+
+
+def sweep(name, scene, views, errors, methods, paths):
+    ref = os.path.join(out, name + "-ref")
+    if not os.path.exists(os.path.join(ref, "reference.bin")):
+        subprocess.run([walkrad, "sweep", scene, *views, "-o", ref, "--methods", "importance", "--errors", "0.4",
+                        "--points", "1024", "--samples", str(paths), "--image-width", "0", "--threads", "2",
+                        "--no-plots"], check=True, stdout=subprocess.DEVNULL)
+    target = os.path.join(out, name)
+    subprocess.run([walkrad, "sweep", scene, *views, "-o", target, "--reference", ref, "--methods", methods,
+                    "--errors", errors, "--points", "1024", "--samples", str(paths), "--image-width", "0",
+                    "--threads", "2", "--no-plots"], check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(target, "sweep.json")) as f:
+        return json.load(f)
+
+
+def table(title, result):
+    ref = result["reference"]
+    print(f"\n{title} (reference error bar {100 * ref['ci']['rms_weighted']:.2f}% weighted)\n")
+    print("| run | wall (s) | CPU (s) | peak MiB | elements | links | RMS (w) | bias | estimated | absorbed / emitted |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for r in result["runs"]:
+        print(f"| {r['name']} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['peak_rss_mib']:.0f} | {r['elements']} | "
+              f"{r['links']} | {100 * r['rms_weighted']:.2f}% | {100 * r['bias']:+.2f}% | "
+              f"{100 * r['estimated_error']:.2f}% | {r['absorbed_over_emitted']:.3f} |")
+
+
+for part in parts:
+    if part == "cornell":
+        r = sweep("cornell", os.path.join(root, "examples/cornell-box/cornell-box.gltf"), [], "0.4,0.2,0.1,0.05",
+                  "importance,hierarchical", 131072)
+        table("Cornell box", r)
+        for run in r["runs"]:
+            if run["name"] == "importance-0.1":
+                print("\nimportance-0.1 by surface: " + "; ".join(
+                    f"{s['surface']} {100 * s['rms_weighted']:.2f}%" for s in run["surfaces"]))
+    elif part.startswith("office"):
+        sizes = [int(x) for x in (part.split(":")[1] if ":" in part else "2,4,8,16").split(",")]
+        for rooms in sizes:
+            scene_dir = os.path.join(out, f"office-{rooms}")
+            subprocess.run([sys.executable, os.path.join(root, "examples/office-floor/make_office_floor.py"), "--rooms",
+                            str(rooms), "--detail", "0.05", "--out", scene_dir], check=True, stdout=subprocess.DEVNULL)
+            suffix = "" if rooms == 8 else f"-{rooms}"
+            scene = os.path.join(scene_dir, f"office-floor{suffix}.glb")
+            views = ["--views", os.path.join(scene_dir, f"office-floor{suffix}-walkthrough.json")]
+            r = sweep(f"office-{rooms}", scene, views, "0.2,0.1" if rooms == 8 else "0.1", "importance,hierarchical", 65536)
+            table(f"office-floor, {rooms} rooms", r)

@@ -1,0 +1,72 @@
+// The hierarchical solution evaluated at a point of a leaf element, for the output vertices: B(x) =
+// E + ρ (D(x) + H(x)), D(x) the punctual lights' irradiance at the point (a shadow ray each), H(x) =
+// Σ F(x → j) B_j over the links of the leaf and of its ancestors. A link from an element near the
+// receiver takes the point's own form factor (the contour formula) times the fraction of the source
+// the link sees (F / F_open); any other is taken as the solve pushes it (a cluster's by direction, an
+// element's by the share of the child or quadrant the point lies in). The leaf's mean B is what the
+// solve balances; a vertex is where the display interpolates, and an area mean placed at a vertex
+// flattens every peak and fills every trough the leaf straddles (docs/numerics.md, "Vertex radiosity").
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/visibility/ray_scene.h"
+
+namespace walkrad {
+
+// What the clusters' links push to each input polygon's element root (by its normal, as the solve
+// does), gathered once for a whole hierarchy.
+class ClusterGather {
+ public:
+  // indirect: sources send B (else only their emission, the effect plan's direct-only case).
+  // lights, rays: punctual lights and their occluders, shot at each point (null: the leaf's mean).
+  ClusterGather(const Hierarchy& h, bool indirect, const std::vector<PunctualLight>* lights = nullptr,
+                const RayScene* rays = nullptr);
+  const Hierarchy& hierarchy() const { return h_; }
+  bool indirect() const { return indirect_; }
+  const std::vector<PunctualLight>* lights() const { return lights_; }
+  const RayScene* rays() const { return rays_; }
+  // Irradiance and row sum at an element root (a polygon's), from every cluster above it.
+  const Vec3& H(uint32_t polygon) const { return H_[polygon]; }
+  double row(uint32_t polygon) const { return row_[polygon]; }
+
+ private:
+  const Hierarchy& h_;
+  bool indirect_;
+  const std::vector<PunctualLight>* lights_;
+  const RayScene* rays_;
+  std::vector<Vec3> H_;
+  std::vector<double> row_;
+};
+
+// The solution over one leaf: what does not depend on the point (per quadrant of the leaf) gathered
+// once, and the near element sources kept for the contour formula at each point.
+class LeafRadiosity {
+ public:
+  // A leaf of a transmitting polygon (with a twin), or a cluster, keeps its mean B.
+  LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting = false);
+
+  // B at a point of the leaf.
+  Vec3 at(const Vec3& x) const;
+
+ private:
+  struct Near {
+    uint32_t source;
+    double visible;  // F / F_open of the link
+  };
+  const ClusterGather& clusters_;
+  const Hierarchy& h_;
+  uint32_t leaf_;
+  bool indirect_, flat_;
+  std::array<Polygon, 4> quadrants_;
+  std::array<Vec3, 4> H_{};
+  std::array<double, 4> row_{};
+  std::vector<Near> near_;
+};
+
+// One point (LeafRadiosity(h, leaf, …).at(x)).
+Vec3 radiosity_at_point(const Hierarchy& h, uint32_t leaf, const Vec3& x, bool indirect, bool transmitting = false);
+
+}  // namespace walkrad

@@ -1,0 +1,197 @@
+// The error a node's links leave in its radiosity, and the tolerance it is held to (docs/numerics.md,
+// "Error control"). Piecewise-constant hierarchical radiosity errs in three ways at a receiver:
+// - its transfers fall unevenly on it, but are pushed to its children uniformly: the variation of the
+//   total over its children (Link::share), not of each link alone, so that transfers which sum to a
+//   uniform irradiance (a furnace, a wall beside a floor) are not refined however large they are
+//   (the receiver-side error of Lischinski, Smits & Greenberg 1994; Holzschuch & Sillion 1998);
+// - a source sends its mean radiosity where the receiver sees some of its parts more than others;
+// - the form factor's own Monte Carlo noise (its standard error, Link::sigma).
+// Each is compared with a tolerance relative to what the receiver shows, so that ε means the same in
+// a white room and a grey one, in one room and in a hundred.
+#include "solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "walkrad/core/rounding.h"
+
+namespace walkrad::hierarchical_detail {
+
+void Solver::update_scales() {
+  // Display weights: a node's leaves' largest (an error left at a cluster reaches every leaf below it,
+  // seen or not). Children come after their parents. The first refinement takes the direct importance
+  // only: the first round's cluster links spread the shot importance over whole buildings by area, and
+  // what is refined on it stays refined.
+  const size_t count = h_.nodes().size();
+  weight_.assign(count, importance_ ? 0.0f : 1.0f);
+  if (importance_) {
+    for (size_t i = count; i-- > 0;) {
+      const HNode& n = h_[uint32_t(i)];
+      const double I = direct_weights_ ? n.R : n.I;
+      if (n.child_count == 0 && n.area > 0 && seen_density_ > 0) weight_[i] = float(std::min(1.0, I / (n.area * seen_density_)));
+      if (n.parent >= 0) weight_[size_t(n.parent)] = std::max(weight_[size_t(n.parent)], weight_[i]);
+    }
+  }
+  // Emitters are left out, as the exposure leaves them out (a light may clip to white), unless the
+  // scene holds nothing else (a furnace).
+  std::vector<std::pair<double, double>> seen;  // luminance, weight
+  double total = 0;
+  for (const bool emitters : {false, true}) {
+    for (const HNode& n : h_.nodes()) {
+      if (n.cluster || n.child_count || (max_component(n.emission) > 0) != emitters) continue;
+      const double w = n.area * display_weight(uint32_t(&n - h_.nodes().data()));
+      if (w <= 0) continue;
+      seen.push_back({luminance(n.B), w});
+      total += w;
+    }
+    if (total > 0) break;
+  }
+  std::sort(seen.begin(), seen.end());
+  double below = 0, p95 = 0;
+  for (const auto& [b, w] : seen) {
+    p95 = b;
+    below += w;
+    if (below >= 0.95 * total) break;
+  }
+  white_ = p95 / 0.9;
+}
+
+double Solver::display_weight(uint32_t i) const {
+  if (!importance_) return 1.0;
+  // A node made this round takes its parent's weight until the next update.
+  while (i >= weight_.size() && h_[i].parent >= 0) i = uint32_t(h_[i].parent);
+  return i < weight_.size() ? double(weight_[i]) : 1.0;
+}
+
+double Solver::tolerance(uint32_t i) const {
+  const HNode& n = h_[i];
+  const double shown = std::clamp(luminance(n.B), kDarkShare * white_, white_);
+  const double w = display_weight(i);
+  return w > 0 && shown > 0 ? s_.error * shown / w : INFINITY;  // nothing lit yet: nothing to refine
+}
+
+void Solver::measure_spread() {
+  // Children come after their parents: one pass from the end gathers every subtree's range.
+  const size_t n = h_.nodes().size();
+  std::vector<float> lo(n, INFINITY), hi(n, -INFINITY);
+  for (size_t i = n; i-- > 0;) {
+    const HNode& node = h_[uint32_t(i)];
+    if (node.child_count == 0) lo[i] = hi[i] = float(luminance(sent(node)));
+    if (node.parent >= 0) {
+      lo[size_t(node.parent)] = std::min(lo[size_t(node.parent)], lo[i]);
+      hi[size_t(node.parent)] = std::max(hi[size_t(node.parent)], hi[i]);
+    }
+  }
+  spread_.assign(n, 0.0f);
+  for (size_t i = 0; i < n; ++i)
+    if (hi[i] >= lo[i]) spread_[i] = hi[i] - lo[i];
+}
+
+void Solver::measure_variation() {
+  measure_spread();
+  variation_.assign(h_.nodes().size(), 0.0f);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, h_.nodes().size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const HNode& n = h_[uint32_t(i)];
+      const uint32_t kids = n.cluster ? n.child_count : 4;
+      if (n.links.empty() || kids < 2 || kids > 4) continue;
+      double H = 0, Hc[4] = {};
+      for (const Link& l : n.links) {
+        const double b = luminance(sent(h_[l.source])) * l.F;
+        H += b;
+        for (uint32_t k = 0; k < kids; ++k) Hc[k] += b * double(l.share[k]);
+      }
+      double worst = 0;
+      for (uint32_t k = 0; k < kids; ++k) {
+        const double rho = luminance(n.child_count ? h_[h_.child(n, k)].rho : n.rho);
+        worst = std::max(worst, rho * std::fabs(Hc[k] - H));
+      }
+      variation_[i] = float(worst);
+    }
+  });
+}
+
+double Solver::transfer_estimate(const HNode& ri, const HNode& sj) const {
+  const Vec3 d = sj.center - ri.center;
+  const double r2 = dot(d, d), r = std::sqrt(r2);
+  const bool near = clearly_greater(2.0 * (ri.radius + sj.radius), r);
+  const Vec3 u = r > 0 ? d / r : Vec3{};
+  const double ci = ri.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, dot(ri.normal, u)));
+  const double cj = sj.cluster ? kClusterCosine : (near ? 1.0 : std::max(0.0, -dot(sj.normal, u)));
+  return ci * cj * sj.area / (kPi * r2 + sj.area);
+}
+
+bool Solver::worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* link) const {
+  if (white_ <= 0) return false;  // nothing solved yet
+  const HNode& ri = h_[i];
+  const HNode& sj = h_[j];
+  const double sent_b = luminance(sent(sj));
+  const double spread = j < spread_.size() ? double(spread_[j]) : sj.parent >= 0 && size_t(sj.parent) < spread_.size()
+                                                                        ? double(spread_[size_t(sj.parent)]) : 0.0;
+  if (!occluded && !clearly_greater(spread, s_.error * sent_b)) return false;  // a uniform source in full view: exact
+  // What the link may carry: the estimate from the centres, or its own form factor once evaluated; a
+  // link whose every ray was blocked, only what n rays could have missed (through a wall: little).
+  const double F = !link ? transfer_estimate(ri, sj) : link->F > 0 ? std::max(transfer_estimate(ri, sj), link->F) : link->sigma;
+  const double carried = luminance(ri.rho) * sent_b * F * ri.area * display_weight(i);
+  return clearly_greater(carried, s_.error * white_ * quantum_area_);
+}
+
+double Solver::source_error(const HNode& ri, const Link& l) const {
+  const HNode& sj = h_[l.source];
+  const double rho = luminance(ri.rho);
+  if (sj.child_count == 0) return splittable(l.source) ? 0.5 * rho * l.F * double(variation_[l.source]) : 0.0;
+  // What the receiver would get from the source's parts two levels down (or one, where a child is a
+  // leaf), each weighed by the kernel from the receiver's centre (cosines taken as 1 where the two are
+  // too close for centre angles to mean anything, or at a cluster end), against the mean it sends.
+  double weight = 0, weighted = 0;
+  auto add = [&](const HNode& c) {
+    const Vec3 d = c.center - ri.center;
+    const double r = std::max(length(d), c.radius);
+    const bool near = clearly_greater(2.0 * (ri.radius + c.radius), r);
+    const double ci = ri.cluster || near ? 1.0 : std::max(0.0, dot(ri.normal, d) / r);
+    const double cj = c.cluster || near ? 1.0 : std::max(0.0, -dot(c.normal, d) / r);
+    const double w = c.area * ci * cj / (r * r);
+    weight += w;
+    weighted += w * luminance(sent(c));
+  };
+  for (uint32_t k = 0; k < sj.child_count; ++k) {
+    const HNode& c = h_[h_.child(sj, k)];
+    if (c.child_count == 0) add(c);
+    for (uint32_t m = 0; m < c.child_count; ++m) add(h_[h_.child(c, m)]);
+  }
+  const double seen_parts = weight > 0 ? rho * l.F * std::fabs(weighted / weight - luminance(sent(sj))) : 0.0;
+  // A link that sees only part of its source: what it sees need not send the mean, by up to half the
+  // source's spread of radiosity (most where half of it is hidden).
+  const double seen = l.open > 0 ? std::clamp(l.F / double(l.open), 0.0, 1.0) : 1.0;
+  const double hidden = rho * l.F * double(spread_[l.source]) * std::min(seen, 1.0 - seen);
+  return std::max(seen_parts, hidden);
+}
+
+void Solver::measure_left_error() {
+  update_scales();
+  measure_variation();
+  stats_.white = white_;
+  for (uint32_t i = 0; i < h_.nodes().size(); ++i) {
+    HNode& n = h_[i];
+    if (n.links.empty()) {
+      n.error = 0;
+      continue;
+    }
+    // The variation counts where it is left: at a node whose children are not refined further, or
+    // that cannot be split (a node with linked children passed its test and handed the rest on).
+    double sq = double(variation_[i]) * double(variation_[i]);
+    const double rho = luminance(n.rho);
+    for (const Link& l : n.links) {
+      const double source = source_error(n, l), noise = rho * luminance(sent(h_[l.source])) * l.sigma;
+      sq += source * source + noise * noise;
+    }
+    n.error = float(std::sqrt(sq));
+    const double ratio = n.error / std::max(tolerance(i), 1e-300);
+    if (ratio > 1) ++stats_.above_tolerance;
+  }
+}
+
+}  // namespace walkrad::hierarchical_detail
