@@ -41,7 +41,8 @@ class Player {
   void update(const CameraPlace& camera);
   // Draws one frame of width × height pixels from the camera of the last update (the projection
   // uses this aspect and the viewpoint's vertical field of view). A needed chunk that is not
-  // resident counts as a miss, except on the first frame (that wait is the time to first frame).
+  // resident counts as a miss, except on the first frame (that wait, which also covers what the next
+  // path frame needs, is the time to first frame).
   void draw(int width, int height, MissPolicy policy);
   // update + draw(kWait) for a viewpoint off any path: the chunks in its frustum are drawn.
   void draw(const Viewpoint& view, int width, int height);
