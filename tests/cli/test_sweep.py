@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""walkrad sweep on the Cornell box with coarse settings (two ε per hierarchical method, two element
+"""walkrad sweep on the Cornell box with coarse settings (errors 1 and 0.1 per hierarchical method, two element
 sizes for the classic one): sweep.csv has every documented field and a row per bake; for every method
 the error against the path-traced reference falls as the setting gets finer, by more than the
 reference's own error bar; the plots, report.md and reference image are written. An unknown method is

@@ -93,6 +93,7 @@ void Solver::measure_spread() {
 void Solver::measure_variation() {
   measure_spread();
   variation_.assign(h_.nodes().size(), 0.0f);
+  left_.assign(h_.nodes().size(), 0.0f);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, h_.nodes().size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const HNode& n = h_[uint32_t(i)];
@@ -104,12 +105,18 @@ void Solver::measure_variation() {
         H += b;
         for (uint32_t k = 0; k < kids; ++k) Hc[k] += b * double(l.share[k]);
       }
-      double worst = 0;
+      double worst = 0, squares = 0;
       for (uint32_t k = 0; k < kids; ++k) {
         const double rho = luminance(n.child_count ? h_[h_.child(n, k)].rho : n.rho);
         worst = std::max(worst, rho * std::fabs(Hc[k] - H));
+        squares += rho * rho * (Hc[k] - H) * (Hc[k] - H);
       }
       variation_[i] = float(worst);
+      // Shares already give each child its own mean (the push and the vertices use them), so what is
+      // left is the variation inside a child: for a transfer that varies linearly across the node, a
+      // child's half-range equals its mean's distance from the node's, and a linear ramp's RMS about
+      // its mean is its half-range / √3.
+      left_[i] = float(std::sqrt(squares / double(kids) / 3.0));
     }
   });
 }
@@ -180,9 +187,9 @@ void Solver::measure_left_error() {
       n.error = 0;
       continue;
     }
-    // The variation counts where it is left: at a node whose children are not refined further, or
-    // that cannot be split (a node with linked children passed its test and handed the rest on).
-    double sq = double(variation_[i]) * double(variation_[i]);
+    // An RMS, as the sweep measures: the variation's RMS left inside the children, not its worst
+    // child (which the refinement tests), with the source's and the form factor's errors.
+    double sq = double(left_[i]) * double(left_[i]);
     const double rho = luminance(n.rho);
     for (const Link& l : n.links) {
       const double source = source_error(n, l), noise = rho * luminance(sent(h_[l.source])) * l.sigma;

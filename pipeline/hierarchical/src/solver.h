@@ -77,7 +77,9 @@ class Solver {
   double tolerance(uint32_t i) const;
 
   // variation_[i] for every node with links, in parallel: how far its children's radiosity would
-  // differ from one another if its links were gathered at the children (Link::share), ρ_c |H_c − H|.
+  // differ from one another if its links were gathered at the children (Link::share), ρ_c |H_c − H|
+  // at its worst child (the refinement's test); left_[i]: the RMS error that variation leaves inside
+  // the children (the estimate's share of it, see measure_left_error).
   void measure_variation();
 
   // spread_[i]: the range of luminance its leaves send, for every node.
@@ -223,6 +225,7 @@ class Solver {
   bool direct_weights_ = false;  // display weights from the direct importance R (the first refinement)
   double quantum_area_ = 0;       // a texel of the scene's typical surface: its median polygon side / 32, squared
   std::vector<float> variation_;  // by node (measure_variation)
+  std::vector<float> left_;       // by node (measure_variation): the RMS error its variation leaves
   std::vector<float> spread_;     // by node: the range of its leaves' sent radiosity (measure_spread)
   std::vector<float> weight_;     // by node: its display weight (update_scales)
   std::vector<DirectionalIrradiance> cube_;  // by cluster node (all made at the start): its own links' gather
