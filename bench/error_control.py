@@ -14,7 +14,8 @@ control" section.
 References are cached in OUT/<scene>-ref (sweep --reference) and reused by later runs.
 
 Usage: bench/error_control.py [BUILD_DIR] [OUT] [PARTS]   (default build, build/bench-error,
-       furnace,cornell,office; e.g. PARTS=office:2,4 for two sizes only)"""
+       furnace,cornell,office; e.g. PARTS=office:2/4 for two sizes only, office-importance:2/4/8/16
+       for the importance-driven bakes only)"""
 import json
 import os
 import subprocess
@@ -109,7 +110,7 @@ for part in parts:
                 print("\nimportance-0.1 by surface: " + "; ".join(
                     f"{s['surface']} {100 * s['rms_weighted']:.2f}%" for s in run["surfaces"]))
     elif part.startswith("office"):
-        sizes = [int(x) for x in (part.split(":")[1] if ":" in part else "2,4,8,16").split(",")]
+        sizes = [int(x) for x in (part.split(":")[1] if ":" in part else "2/4/8/16").split("/")]
         for rooms in sizes:
             scene_dir = os.path.join(out, f"office-{rooms}-scene")
             subprocess.run([sys.executable, os.path.join(root, "examples/office-floor/make_office_floor.py"), "--rooms",
@@ -117,7 +118,9 @@ for part in parts:
             suffix = "" if rooms == 8 else f"-{rooms}"
             scene = os.path.join(scene_dir, f"office-floor{suffix}.glb")
             views = ["--views", os.path.join(scene_dir, f"office-floor{suffix}-walkthrough.json")]
-            both = rooms <= 8  # the view-independent bake of 16 rooms takes over a quarter of an hour here
+            # The view-independent bake of 16 rooms takes over a quarter of an hour here; office-importance:
+            # the importance-driven bakes only.
+            both = rooms <= 8 and not part.startswith("office-importance")
             r = sweep(f"office-{rooms}", scene, views, "0.1", "importance,hierarchical" if both else "importance", 65536)
             table(f"office-floor, {rooms} rooms", r)
             if both:

@@ -89,6 +89,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   hs.visibility = plan.visibility.on;
   hs.indirect = plan.indirect.on;
   hs.closed = plan.closure.on;
+  hs.closed_rows = plan.closed && !(plan.closure.forced && !plan.closure.on);  // closure=off: no scaling at all
   if (plan.punctual.on) hs.lights = &scene.lights;
   if (plan.transmission.on) hs.twins = &twins;
   hs.volumes = volumes;
@@ -165,7 +166,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
               {"corrections", stats.corrections},
               {"balance", {{"iterations", stats.balance_iterations}, {"row_error", stats.balance_row_error},
-                           {"column_error", stats.balance_column_error}, {"unbalanced_leaves", stats.balance_unbalanced}}}};
+                           {"column_error", stats.balance_column_error}, {"unbalanced_leaves", stats.balance_unbalanced},
+                           {"rows_only", hs.closed_rows && !hs.closed}, {"mean_raw_row_sum", stats.mean_row_sum}}}};
   const IterationStats& last = stats.iterations.back();
   r.energy = energy_json(last.emitted, last.absorbed);
   r.energy["residual_w"] = vec_json(last.residual);

@@ -77,6 +77,9 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     evaluate_pending(is);
     if (s_.checkpoint) s_.checkpoint("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
+    if (s_.closed_rows && !s_.closed && is.new_links > 0) {
+      stats_.balance_unbalanced = normalise_closed_rows(h_, &stats_.mean_row_sum);
+    }
     const bool settled = is.new_links == 0 && h_.element_count() == elements_before;  // (lights split elements too)
     if (settled && converged_before) {
       is.change = 0;

@@ -235,6 +235,26 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
   return stats;
 }
 
+uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row) {
+  const auto one = [](const HNode&) { return 1.0; };
+  const std::vector<double> raw = row_sums(h, one);
+  uint64_t left = 0;
+  double area = 0, weighted = 0;
+  for (size_t k = 0; k < raw.size(); ++k) {  // sequential: a fixed order of sums
+    HNode& n = h.nodes()[k];
+    n.balanced = false;  // also on nodes that were leaves in an earlier round
+    if (!is_leaf_element(n)) continue;
+    n.send = 1.0;
+    n.balanced = raw[k] >= kMinRaw && raw[k] <= kMaxRaw;
+    n.receive = n.balanced ? std::clamp(1.0 / raw[k], kMinFactor, kMaxFactor) : 1.0;
+    left += !n.balanced;
+    area += n.area;
+    weighted += n.area * raw[k];
+  }
+  if (mean_row) *mean_row = area > 0 ? weighted / area : 1.0;
+  return left;
+}
+
 double aggregation_correction(Hierarchy& h, double floor) {
   std::vector<HNode>& nodes = h.nodes();
   std::vector<Vec3> b(nodes.size()), v(nodes.size());

@@ -165,11 +165,12 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   // the balance, its factors bounded, no longer converged on office-floor, made it less accurate
   // (weighted RMS 7.3% against 5.9%) and took a third of the solve (docs/numerics.md).
   plan.closure.on = false;
+  plan.closed = closed;
   const std::string pressed_note =
       pressed_samples > 0 ? ", but for " + std::to_string(pressed_samples) + " from faces pressed against others" : "";
   plan.closure.reason = method != "hierarchical" ? "classic method: its uniform elements' row sums need no correction"
                         : closed ? "closed: no ray from any surface escapes (" + std::to_string(closure_rays) + " rays" +
-                                       pressed_note + "); row sums left as computed (--effect closure=on balances them)"
+                                       pressed_note + "); each leaf's row sum scaled to 1 (--effect closure=on balances rows and sends)"
                                  : "rays escape the scene: row sums are left as computed";
   apply_override(plan.indirect, "indirect", overrides);
   apply_override(plan.closure, "closure", overrides);

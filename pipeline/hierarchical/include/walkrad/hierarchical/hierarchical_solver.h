@@ -48,6 +48,8 @@ struct HierarchicalSettings {
   // uniformly and take radiosity by area: row sums 0.80–1.25 in an empty lit box, which lost 2.7% of
   // its power). Closed: both are restored by scaling each leaf's gather and send (link_transport.h).
   bool closed = false;
+  // Closed, but not balanced: each leaf's row sum alone is scaled to 1 (normalise_closed_rows).
+  bool closed_rows = false;
   // Aggregation correction after every sweep (link_transport.h): removes the slow overall mode of
   // Gauss-Seidel at high reflectance (furnace ρ 0.99: 611 sweeps without).
   bool accelerate = true;
@@ -90,6 +92,7 @@ struct HierarchicalStats {
   uint64_t light_rays = 0;             // shadow rays towards punctual lights
   uint64_t light_refinements = 0;      // elements split for the punctual lights' variation
   int balance_iterations = 0;          // Sinkhorn iterations (closed scenes), all rounds
+  double mean_row_sum = 0;             // closed_rows: the leaves' area-weighted mean raw row sum, last round
   double balance_row_error = 0, balance_column_error = 0;  // after the last balance
   uint64_t balance_unbalanced = 0;     // leaves the last balance left alone (hidden, coincident)
   // Visibility per link: unoccluded_links (nothing in the shaft), exact_links (Embree rays against

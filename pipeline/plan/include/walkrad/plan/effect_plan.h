@@ -7,7 +7,7 @@
 //   clusters    — the hierarchical method's cluster links (always with it; none in the classic method);
 //   closure     — balance each leaf's gather and send in a closed scene (no ray from any surface
 //                 escapes: every form factor row sums to 1; link_transport.h). Off unless forced on: the
-//                 plan says whether the scene is closed;
+//                 plan says whether the scene is closed, and a closed scene's rows alone are scaled to 1;
 //   punctual    — point and spot lights (glTF KHR_lights_punctual), shot straight to the elements
 //                 (punctual_lights.h); off ignores them;
 //   transmission — diffuse transmission where a material transmits (transmission.h; hierarchical
@@ -43,6 +43,7 @@ struct Effect {
 
 struct EffectPlan {
   Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes;
+  bool closed = false;  // no ray from any surface escapes (hierarchical method only): rows scaled to 1
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
 };
