@@ -4,7 +4,7 @@
 default quantisation and with -cc (EXT_meshopt_compression). Also how far the Draco bake is from the plain one
 (walkrad diff). Prints the table for docs/performance.md.
 
-Usage: bench/chunk_sizes.py [BUILD_DIR]   (bakes Cornell at the default ε and office-floor, 8 rooms, ε 1e-4)"""
+Usage: bench/chunk_sizes.py [BUILD_DIR]   (bakes Cornell and office-floor, 8 rooms, at the default error)"""
 import glob
 import json
 import os
@@ -26,8 +26,8 @@ if not os.path.exists(os.path.join(office, "office-floor.glb")):
     subprocess.run([sys.executable, os.path.join(root, "examples/office-floor/make_office_floor.py"), "--out", office],
                    check=True, stdout=subprocess.DEVNULL)
 scenes = {
-    "Cornell box (ε 1e-5)": (os.path.join(root, "examples/cornell-box/cornell-box.gltf"), []),
-    "office-floor, 8 rooms (ε 1e-4)": (os.path.join(office, "office-floor.glb"),
+    "Cornell box": (os.path.join(root, "examples/cornell-box/cornell-box.gltf"), []),
+    "office-floor, 8 rooms": (os.path.join(office, "office-floor.glb"),
                                        ["--views", os.path.join(office, "office-floor-walkthrough.json")]),
 }
 

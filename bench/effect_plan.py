@@ -42,7 +42,7 @@ def bake(scene, args, name):
     return statistics.median(times), report
 
 
-print(f"Each example baked {runs} times each way at ε = 1e-4 (median wall time, 2 threads).\n")
+print(f"Each example baked {runs} times each way at the default error (median wall time, 2 threads).\n")
 print("| example | effects the plan turns off | plan: time (s) | rays | all forced on: time (s) | rays | forced / plan time |")
 print("| --- | --- | ---: | ---: | ---: | ---: | ---: |")
 for label, scene, args in EXAMPLES:

@@ -16,6 +16,7 @@ References are cached in OUT/<scene>-ref (sweep --reference) and reused by later
 Usage: bench/error_control.py [BUILD_DIR] [OUT] [PARTS]   (default build, build/bench-error,
        furnace,cornell,office; e.g. PARTS=office:2/4 for two sizes only, office-importance:2/4/8/16
        for the importance-driven bakes only)"""
+import csv
 import json
 import os
 import subprocess
@@ -36,18 +37,16 @@ def sweep(name, scene, views, errors, methods, paths):
                         "--points", "1024", "--samples", str(paths), "--image-width", "0", "--threads", "2",
                         "--no-plots"], check=True, stdout=subprocess.DEVNULL)
     target = os.path.join(out, name)
-    sweep.last = target
     subprocess.run([walkrad, "sweep", scene, *views, "-o", target, "--reference", ref, "--methods", methods,
                     "--errors", errors, "--points", "1024", "--samples", str(paths), "--image-width", "0",
                     "--threads", "2", "--no-plots"], check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(target, "sweep.json")) as f:
-        return json.load(f)
+        return json.load(f), target
 
 
 def agreement(target, a, b):
     """Weighted relative RMS difference between two bakes at the sweep's points (bake-points.csv,
     weights from reference-points.csv): how far the importance-driven bake is from the view-independent one."""
-    import csv
     with open(os.path.join(target, "reference-points.csv")) as f:
         weights = [float(row["weight"]) for row in csv.DictReader(f)]
     num = den = 0.0
@@ -100,11 +99,11 @@ for part in parts:
         for rho in (0.5, 0.9, 0.99):
             furnace(rho)
     if part == "cornell":
-        r = sweep("cornell", os.path.join(root, "examples/cornell-box/cornell-box.gltf"), [], "0.4,0.2,0.1,0.05",
+        r, target = sweep("cornell", os.path.join(root, "examples/cornell-box/cornell-box.gltf"), [], "0.4,0.2,0.1,0.05",
                   "importance,hierarchical", 131072)
         table("Cornell box", r)
         print(f"\nimportance-0.1 against hierarchical-0.1 at the same points: "
-              f"{100 * agreement(sweep.last, 'importance-0.1', 'hierarchical-0.1'):.2f}% weighted RMS difference")
+              f"{100 * agreement(target, 'importance-0.1', 'hierarchical-0.1'):.2f}% weighted RMS difference")
         for run in r["runs"]:
             if run["name"] == "importance-0.1":
                 print("\nimportance-0.1 by surface: " + "; ".join(
@@ -121,8 +120,8 @@ for part in parts:
             # The view-independent bake of 16 rooms takes over a quarter of an hour here; office-importance:
             # the importance-driven bakes only.
             both = rooms <= 8 and not part.startswith("office-importance")
-            r = sweep(f"office-{rooms}", scene, views, "0.1", "importance,hierarchical" if both else "importance", 65536)
+            r, target = sweep(f"office-{rooms}", scene, views, "0.1", "importance,hierarchical" if both else "importance", 65536)
             table(f"office-floor, {rooms} rooms", r)
             if both:
                 print(f"\nimportance-0.1 against hierarchical-0.1 at the same points: "
-                      f"{100 * agreement(sweep.last, 'importance-0.1', 'hierarchical-0.1'):.2f}% weighted RMS difference")
+                      f"{100 * agreement(target, 'importance-0.1', 'hierarchical-0.1'):.2f}% weighted RMS difference")

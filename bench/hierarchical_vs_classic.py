@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Hierarchical against classic radiosity on the Cornell box: error against a fine classic solution
-(relative RMS of radiosity where the camera looks) and bake time, for several ε and the classic
+(relative RMS of radiosity where the camera looks) and bake time, for several requested errors and the classic
 default. Prints the table for docs/performance.md.
 
 Usage: bench/hierarchical_vs_classic.py [BUILD_DIR] [FINE_ELEMENT_SIZE]   (default build, 0.015 m)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """office-floor: what importance saves, and how the view-independent bake grows with the building.
 Generates the building with examples/office-floor/make_office_floor.py for each size, bakes it
-view-independently and (for the default 8 rooms) importance-driven from its walkthrough, at one ε,
+view-independently and (for the default 8 rooms) importance-driven from its walkthrough, at one requested error,
 and prints the tables for docs/performance.md.
 
 Usage: bench/office_floor.py [BUILD_DIR] [ERROR] [SIZES]   (default build, 0.1, 1,2,4,8)"""

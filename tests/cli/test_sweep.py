@@ -24,7 +24,7 @@ subprocess.run([walkrad, "sweep", scene, "-o", out, "-q", "--errors", "1,0.1", "
 
 failures = []
 FIELDS = ["method", "error", "element_size", "seconds", "cpu_seconds", "elements", "links", "rays", "triangles",
-          "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "max", "max_weighted", "bias", "image_pixels", "image_rms",
+          "peak_rss_mib", "output_bytes", "points", "rms", "rms_weighted", "estimated_error", "max", "max_weighted", "bias", "image_pixels", "image_rms",
           "image_rms_weighted", "reference_ci_rms", "reference_ci_rms_weighted", "reference_image_ci_rms",
           "absorbed_over_emitted", "t_read", "t_prepare", "t_solve", "t_mesh", "t_write"]
 with open(os.path.join(out, "sweep.csv")) as f:
@@ -38,6 +38,25 @@ for r in rows:
     for c in ["seconds", "elements", "links", "rays", "peak_rss_mib", "output_bytes", "points"]:
         if not float(r[c]) > 0:
             failures.append(f"{r['method']}: {c} = {r[c]}, expected > 0")
+
+for r in rows:  # the bake's own estimate, for the hierarchical methods (report.json solver.estimated_error)
+    if r["method"] != "classic" and not float(r["estimated_error"]) > 0:
+        failures.append(f"{r['method']} {r['error']}: estimated_error = {r['estimated_error']}, expected > 0")
+
+# --reference reuses the first sweep's reference (the same points, to the byte) and refuses one
+# traced with other settings.
+again = os.path.join(work, "again.sweep")
+subprocess.run([walkrad, "sweep", scene, "-o", again, "-q", "--reference", out, "--methods", "importance", "--errors", "1",
+                "--points", "256", "--samples", "4096", "--image-width", "16", "--image-samples", "256"], check=True,
+               stdout=subprocess.DEVNULL)
+with open(os.path.join(out, "reference-points.csv"), "rb") as a, open(os.path.join(again, "reference-points.csv"), "rb") as b:
+    if a.read() != b.read():
+        failures.append("--reference: reference-points.csv differs from the sweep it reused")
+other = subprocess.run([walkrad, "sweep", scene, "-o", os.path.join(work, "other.sweep"), "-q", "--reference", out,
+                        "--methods", "importance", "--errors", "1", "--points", "128", "--samples", "4096",
+                        "--image-width", "16", "--image-samples", "256"], capture_output=True, text=True)
+if other.returncode == 0 or "another scene or settings" not in other.stderr:
+    failures.append(f"--reference with other settings: exit {other.returncode}, {other.stderr.strip()[:200]}")
 
 for method, setting in [("classic", "element_size"), ("hierarchical", "error"), ("importance", "error")]:
     runs = sorted((r for r in rows if r["method"] == method), key=lambda r: -float(r[setting]))  # coarse first

@@ -1,11 +1,10 @@
 #include "walkrad/accuracy/reference_cache.h"
 
 #include <cstdint>
-#include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <type_traits>
 
+#include "walkrad/core/file_hash.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
@@ -14,20 +13,7 @@ namespace {
 
 constexpr char kMagic[8] = {'W', 'R', 'R', 'E', 'F', '0', '0', '1'};
 
-uint64_t fnv1a(const std::string& bytes, uint64_t h = 0xcbf29ce484222325ull) {
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ull;
-  return h;
-}
-
-std::string file_digest(const std::string& path) {
-  if (path.empty()) return "none";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the file to key its reference");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  char text[24];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(fnv1a(bytes)));
-  return text;
-}
+std::string file_digest(const std::string& path) { return path.empty() ? "none" : hash_file(path); }
 
 template <class T>
 void put(std::ofstream& out, const T& v) {

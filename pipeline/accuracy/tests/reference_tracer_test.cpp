@@ -16,6 +16,13 @@ namespace {
 // 3.29 σ: a correct estimator fails one check in a thousand; the checks below are a few dozen.
 constexpr double kSigmas = 3.29;
 
+// One sample point at each polygon's centroid.
+std::vector<SurfacePoint> centroids(const Scene& s) {
+  std::vector<SurfacePoint> points;
+  for (uint32_t p = 0; p < s.polygons.size(); ++p) points.push_back({p, polygon_centroid(s.polygons[p])});
+  return points;
+}
+
 class ReferenceFurnace : public ::testing::TestWithParam<double> {};
 
 TEST_P(ReferenceFurnace, AgreesWithEOverOneMinusRhoWithinItsInterval) {
@@ -61,8 +68,7 @@ TEST(ReferenceFurnace, BackToBackWallsKeepEachBoxExact) {
   }
   const RayScene rays(s);
   const ReferenceTracer tracer(s, rays);
-  std::vector<SurfacePoint> points;
-  for (uint32_t p = 0; p < s.polygons.size(); ++p) points.push_back({p, polygon_centroid(s.polygons[p])});
+  const std::vector<SurfacePoint> points = centroids(s);
   ReferenceSettings settings;
   settings.samples = 4096;
   uint64_t cast = 0;
@@ -116,8 +122,7 @@ TEST(ReferenceTracer, SameEstimatesWithOneAndTwoThreads) {
   const Scene box = test::closed_box(1.0, {0.7, 0.6, 0.5}, {1, 1, 1});
   const RayScene rays(box);
   const ReferenceTracer tracer(box, rays);
-  std::vector<SurfacePoint> points;
-  for (uint32_t p = 0; p < box.polygons.size(); ++p) points.push_back({p, polygon_centroid(box.polygons[p])});
+  const std::vector<SurfacePoint> points = centroids(box);
   ReferenceSettings s;
   s.samples = 64;
   auto run = [&](int threads) {

@@ -18,6 +18,7 @@
 #include "walkrad/formats/gltf_reader.h"
 #include "walkrad/formats/manifest.h"
 #include "walkrad/formats/walkthrough.h"
+#include "walkrad/core/file_hash.h"
 #include "walkrad/core/staged_output.h"
 #include "walkrad/output/chunk_optimizer.h"
 #include "walkrad/output/chunking.h"
@@ -39,19 +40,6 @@ namespace walkrad {
 using namespace bake_detail;
 
 namespace {
-
-// FNV-1a 64 of a file's bytes: identifies the input in the manifest (not a security hash).
-std::string hash_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  uint64_t h = 0xcbf29ce484222325ull;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ uint8_t(buf[i])) * 0x100000001b3ull;
-  }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
-}
 
 // Identifies what the extinction grid is made from: every polygon's corners and the volume settings
 // (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.

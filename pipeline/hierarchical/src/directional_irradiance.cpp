@@ -49,12 +49,6 @@ DirectionalIrradiance& DirectionalIrradiance::operator+=(const DirectionalIrradi
   return *this;
 }
 
-bool DirectionalIrradiance::empty() const {
-  for (double f : F)
-    if (f != 0) return false;
-  return true;
-}
-
 Vec3 link_direction(const HNode& receiver, const HNode& source) {
   const Vec3 d = source.center - receiver.center;
   const double r = length(d);

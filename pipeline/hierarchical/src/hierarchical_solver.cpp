@@ -21,8 +21,10 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       if (!h_[i].cluster) light_frontier_.push_back(i);
     light_spread_ = direct_for(light_frontier_);
   }
-  min_area_ = s_.min_area > 0 ? s_.min_area : default_min_area(h_);
-  quantum_area_ = default_min_area(h_) * 16;  // the median polygon side / 32, squared
+  const double typical = default_min_area(h_);
+  min_area_ = s_.min_area > 0 ? s_.min_area : typical;
+  stats_.min_area = min_area_;
+  quantum_area_ = typical * 16;  // the median polygon side / 32, squared
   // Changes are measured relative to the leaf's radiosity, but not below 1e-9 of the brightest
   // emitter's: a closed dark room's last traces of light decay by ρ per sweep and would keep their
   // relative change until they underflow (3,853 sweeps in the junction scene).

@@ -91,6 +91,17 @@ uint32_t Hierarchy::add_cluster(uint32_t tree_node, int32_t parent) {
   return index;
 }
 
+uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal, const Vec3& p) {
+  for (uint32_t c = 0; c < 3; ++c) {
+    const Polygon& q = quadrants[c];
+    bool inside = true;
+    for (int k = 0; k < q.count && inside; ++k)
+      inside = dot(cross(q.v[(k + 1) % q.count] - q.v[k], p - q.v[k]), normal) >= 0;
+    if (inside) return c;
+  }
+  return 3;
+}
+
 std::array<Polygon, 4> split_element(const Polygon& s) {
   auto piece = [&](std::initializer_list<Vec3> v) {
     Polygon p = s;

@@ -257,17 +257,6 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   p.share = ri.cluster ? cluster_shares(ri, sj) : child_shares(4, drawn_samples, visible, open / N);
 }
 
-uint32_t Solver::quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal, const Vec3& p) {
-  for (uint32_t c = 0; c < 3; ++c) {
-    const Polygon& q = quadrants[c];
-    bool inside = true;
-    for (int k = 0; k < q.count && inside; ++k)
-      inside = dot(cross(q.v[(k + 1) % q.count] - q.v[k], p - q.v[k]), normal) >= 0;
-    if (inside) return c;
-  }
-  return 3;
-}
-
 std::array<float, 4> Solver::cluster_shares(const HNode& ri, const HNode& sj) const {
   // Each child's projected area towards the source, by the source's projected area towards it, over
   // the squared distance: what the child gets per unit area, against the cluster's area mean. From

@@ -76,14 +76,7 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
 Vec3 LeafRadiosity::at(const Vec3& x) const {
   const HNode& n = h_[leaf_];
   if (flat_) return n.B;
-  uint32_t q = 3;
-  for (uint32_t c = 0; c < 3 && q == 3; ++c) {
-    const Polygon& p = quadrants_[c];
-    bool inside = true;
-    for (int k = 0; k < p.count && inside; ++k)
-      inside = dot(cross(p.v[(k + 1) % p.count] - p.v[k], x - p.v[k]), n.normal) >= 0;
-    if (inside) q = c;
-  }
+  const uint32_t q = quadrant_of(quadrants_, n.normal, x);
   Vec3 H = H_[q];
   double row = row_[q];
   for (const Near& s : near_) {
@@ -95,10 +88,6 @@ Vec3 LeafRadiosity::at(const Vec3& x) const {
   uint64_t rays = 0;
   const Vec3 D = clusters_.lights() ? point_irradiance(x, n.normal, *clusters_.lights(), clusters_.rays(), rays) : n.D;
   return n.emission + mul(n.rho, leaf_irradiance(n, H, row) + D);
-}
-
-Vec3 radiosity_at_point(const Hierarchy& h, uint32_t leaf, const Vec3& x, bool indirect, bool transmitting) {
-  return LeafRadiosity(ClusterGather(h, indirect), leaf, transmitting).at(x);
 }
 
 }  // namespace walkrad

@@ -33,32 +33,34 @@ double Solver::solve_sweep(IterationStats& is) {
 }
 
 void Solver::gather(HNode& n) {
-  Vec3 H;
-  double f = 0;
-  for (const Link& l : n.links) {
-    H += sent(h_[l.source]) * l.F;
-    f += l.F;
-  }
-  n.H = H;
-  n.Fsum = f;
-  // A cluster keeps its transfers by direction (directional_irradiance.h); an element gives each child
-  // its share of every link (Link::share). Set here so that a Jacobi sweep pushes what it gathered.
-  if (n.cluster) {
-    DirectionalIrradiance& cube = cube_[size_t(&n - h_.nodes().data())];
-    cube = {};
-    for (const Link& l : n.links) cube.add(n, link_direction(n, h_[l.source]), l.F, sent(h_[l.source]));
-  }
+  // One pass over the links, each source's radiosity read once. A cluster keeps its transfers by
+  // direction (directional_irradiance.h); an element gives each child its share of every link
+  // (Link::share). Set here so that a Jacobi sweep pushes what it gathered.
+  DirectionalIrradiance* cube = n.cluster ? &cube_[size_t(&n - h_.nodes().data())] : nullptr;
+  if (cube) *cube = {};
+  const uint32_t shared = n.cluster ? 0 : std::min<uint32_t>(n.child_count, 4);
   for (uint32_t k = 0; k < n.child_count; ++k) {
     HNode& c = h_[h_.child(n, k)];
     c.Hp = Vec3{};
     c.Fp = 0;
-    if (k >= 4 || n.cluster) continue;
-    for (const Link& l : n.links) {
+  }
+  Vec3 H;
+  double f = 0;
+  for (const Link& l : n.links) {
+    const HNode& source = h_[l.source];
+    const Vec3 b = sent(source);
+    H += b * l.F;
+    f += l.F;
+    if (cube) cube->add(n, link_direction(n, source), l.F, b);
+    for (uint32_t k = 0; k < shared; ++k) {
+      HNode& c = h_[h_.child(n, k)];
       const double share = l.F * double(l.share[k]);
-      c.Hp += sent(h_[l.source]) * share;
+      c.Hp += b * share;
       c.Fp += share;
     }
   }
+  n.H = H;
+  n.Fsum = f;
 }
 
 void Solver::gather_subtree(uint32_t i) {

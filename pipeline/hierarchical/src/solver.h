@@ -173,9 +173,6 @@ class Solver {
   // Element to element, by the receiver's quadrants (link_evaluation.cpp).
   void evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const;
 
-  // Which of an element's quadrants (split_element) holds a point of it.
-  static uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal, const Vec3& p);
-
   // Link::share for a cluster receiver, from its children's facing areas (HNode::facing).
   std::array<float, 4> cluster_shares(const HNode& ri, const HNode& sj) const;
 

@@ -1,6 +1,9 @@
 #include "walkrad/output/hierarchy_mesher.h"
 
 #include <memory>
+
+#include <tbb/enumerable_thread_specific.h>
+
 #include "walkrad/output/surface_mesher.h"
 #include "walkrad/hierarchical/point_radiosity.h"
 #include "walkrad/scene/transmission_twins.h"
@@ -20,18 +23,20 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
   // The mesher asks for a face's points one after another on one thread: the leaf's gather is kept
   // between them (LeafRadiosity), per thread; the clusters' part once for all (ClusterGather).
   const ClusterGather clusters(h, point.indirect, point.lights, point.rays);
+  struct Cached {
+    uint32_t leaf = UINT32_MAX;
+    std::unique_ptr<LeafRadiosity> radiosity;
+  };
+  tbb::enumerable_thread_specific<Cached> cache;  // lives no longer than `clusters`, which it refers to
   return mesh_faces(faces, exposure, [&](size_t face, const Vec3& x) {
-    thread_local std::unique_ptr<LeafRadiosity> cached;
-    thread_local const Hierarchy* cached_h = nullptr;
-    thread_local uint32_t cached_leaf = UINT32_MAX;
+    Cached& c = cache.local();
     const uint32_t i = leaf[face];
-    if (!cached || cached_h != &h || cached_leaf != i) {
+    if (c.leaf != i) {
       const bool transmitting = point.twins && (*point.twins)[h[i].polygon] != kNoTwin;
-      cached = std::make_unique<LeafRadiosity>(clusters, i, transmitting);
-      cached_h = &h;
-      cached_leaf = i;
+      c.radiosity = std::make_unique<LeafRadiosity>(clusters, i, transmitting);
+      c.leaf = i;
     }
-    return cached->at(x);
+    return c.radiosity->at(x);
   });
 }
 

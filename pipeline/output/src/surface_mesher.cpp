@@ -168,7 +168,8 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         const Vec3 c = polygon_centroid(faces[i].shape);
-        centre_value[i] = at(i, c);
+        const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
+        if (fanned) centre_value[i] = at(i, c);
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
           value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * 1e-3);
       }

@@ -176,10 +176,10 @@ double balance(const nlohmann::json& report) {
 }
 
 // A closed scene: the plan says so, and forced on (--effect closure=on) every leaf sends all its power
-// through its links, so the power balance closes. By default it is not balanced: the box's lamp (ρ = 0)
-// shows nothing it receives, so its links from the walls are never refined and take the walls' mean
-// radiosity; its absorption, hence the balance, is off by a few percent, while every surface that
-// reflects gets a row sum near 1 (docs/numerics.md, "Closed scenes").
+// through its links, so the power balance closes. By default only each leaf's row sum is scaled to 1:
+// the box's lamp (ρ = 0) shows nothing it receives, so its links from the walls are never refined and
+// take the walls' mean radiosity; its absorption, hence the balance, is off by a few percent
+// (docs/numerics.md, "Closed scenes").
 TEST_F(EffectPlanBake, ClosedSceneKeepsItsPowerWhenBalanced) {
   const nlohmann::json planned = bake_scene(box_with_block(), "closed", "hierarchical");
   const nlohmann::json on = bake_scene(box_with_block(), "balanced", "hierarchical", {{"closure", "on"}});
@@ -187,9 +187,11 @@ TEST_F(EffectPlanBake, ClosedSceneKeepsItsPowerWhenBalanced) {
   EXPECT_NE(planned["effects"]["closure"]["reason"].get<std::string>().find("closed"), std::string::npos);
   EXPECT_NEAR(balance(on), 1.0, 0.01);
   EXPECT_NEAR(balance(planned), 1.0, 0.03);
+  EXPECT_TRUE(planned["solver"]["balance"]["rows_only"].get<bool>());
+  EXPECT_FALSE(on["solver"]["balance"]["rows_only"].get<bool>());  // balanced on both sides instead
   // The block's bottom on the floor does not open the box.
   const nlohmann::json pressed = bake_scene(box_with_closed_block(), "pressed", "hierarchical", {{"closure", "on"}});
-  EXPECT_TRUE(pressed["effects"]["closure"]["on"].get<bool>());
+  EXPECT_NE(pressed["effects"]["closure"]["reason"].get<std::string>().find("closed:"), std::string::npos);
   EXPECT_NE(pressed["effects"]["closure"]["reason"].get<std::string>().find("pressed"), std::string::npos);
   std::printf("absorbed / emitted: default %.6f, balanced %.6f, pressed and balanced %.6f\n", balance(planned), balance(on),
               balance(pressed));
@@ -197,8 +199,9 @@ TEST_F(EffectPlanBake, ClosedSceneKeepsItsPowerWhenBalanced) {
   // An open box (one wall removed) is not closed.
   Scene open = box_with_block();
   open.polygons.erase(open.polygons.begin() + 1);
-  EXPECT_EQ(bake_scene(open, "no-lid", "hierarchical")["effects"]["closure"]["reason"].get<std::string>().find("closed"),
-            std::string::npos);
+  const nlohmann::json lidless = bake_scene(open, "no-lid", "hierarchical");
+  EXPECT_EQ(lidless["effects"]["closure"]["reason"].get<std::string>().find("closed"), std::string::npos);
+  EXPECT_FALSE(lidless["solver"]["balance"]["rows_only"].get<bool>());
 }
 
 }  // namespace

@@ -25,7 +25,6 @@ struct DirectionalIrradiance {
   double row(const Vec3& n) const;
 
   DirectionalIrradiance& operator+=(const DirectionalIrradiance& o);
-  bool empty() const;
 };
 
 // The unit direction from a link's receiver to its source (centre to centre).

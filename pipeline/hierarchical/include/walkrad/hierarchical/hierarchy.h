@@ -142,6 +142,10 @@ inline double projected_area(const HNode& n, const Vec3& d) {
 // midpoints, a triangle by its edge midpoints (the fourth child the middle one).
 std::array<Polygon, 4> split_element(const Polygon& shape);
 
+// Which of split_element's four children holds p (on the element's plane; normal: the element's):
+// the first of the three outer ones whose edges all have p on their inner side, else the fourth.
+uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal, const Vec3& p);
+
 // The areas of the receiver's children that Link::share refers to (an element not yet split: its
 // quadrants); returns their count (0 for a leaf cluster without children).
 uint32_t share_areas(const Hierarchy& h, uint32_t receiver, std::array<double, 4>& areas);

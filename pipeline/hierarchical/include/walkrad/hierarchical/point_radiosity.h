@@ -66,7 +66,4 @@ class LeafRadiosity {
   std::vector<Near> near_;
 };
 
-// One point (LeafRadiosity(h, leaf, …).at(x)).
-Vec3 radiosity_at_point(const Hierarchy& h, uint32_t leaf, const Vec3& x, bool indirect, bool transmitting = false);
-
 }  // namespace walkrad
