@@ -183,7 +183,8 @@ BakeSummary bake(const BakeSettings& s) {
   }
 
   phases.start("mesh");
-  const SurfaceMesh surface = result.mesh(exposure);
+  json mesh_counts = json::object();
+  const SurfaceMesh surface = result.mesh(exposure, mesh_counts);
 
   phases.start("chunks");
   ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);
@@ -228,6 +229,7 @@ BakeSummary bake(const BakeSettings& s) {
 
   const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
   json counts = result.counts;
+  counts.update(mesh_counts);
   counts["input_polygons"] = input.polygons.size();
   counts["polygons"] = scene.polygons.size();
   counts["contact_cuts"] = split_stats.cuts;

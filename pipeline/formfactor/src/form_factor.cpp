@@ -48,16 +48,16 @@ GaussRule gauss_rule(int order) {
 
 }  // namespace
 
-std::vector<Vec3> clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count) {
+ClippedPolygon clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count) {
   // Sutherland-Hodgman against one plane.
-  std::vector<Vec3> out;
-  out.reserve(count + 1);
+  ClippedPolygon out;
+  count = std::min(count, 4);
   for (int k = 0; k < count; ++k) {
     const Vec3& a = v[k];
     const Vec3& b = v[(k + 1) % count];
     const double da = dot(a - p, n), db = dot(b - p, n);
-    if (da >= 0) out.push_back(a);
-    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+    if (da >= 0) out.v[size_t(out.count++)] = a;
+    if ((da >= 0) != (db >= 0)) out.v[size_t(out.count++)] = a + (b - a) * (da / (da - db));
   }
   return out;
 }
@@ -70,11 +70,11 @@ double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) {
   const double pl = length(pn);
   if (std::fabs(plane_distance) <= pl * (1e-12 * std::sqrt(pl) + rounding_at(p))) return 0.0;
 
-  const std::vector<Vec3> v = clip_to_hemisphere(p, n, poly.v.data(), poly.count);
-  if (v.size() < 3) return 0.0;
+  const ClippedPolygon v = clip_to_hemisphere(p, n, poly.v.data(), poly.count);
+  if (v.count < 3) return 0.0;
   double sum = 0.0;
-  for (size_t k = 0; k < v.size(); ++k) {
-    const Vec3 r0 = v[k] - p, r1 = v[(k + 1) % v.size()] - p;
+  for (int k = 0; k < v.count; ++k) {
+    const Vec3 r0 = v.v[size_t(k)] - p, r1 = v.v[size_t((k + 1) % v.count)] - p;
     const Vec3 c = cross(r0, r1);
     const double cl = length(c);
     if (cl <= 0) continue;  // p on the edge's line: the edge subtends no angle

@@ -88,6 +88,31 @@ void Solver::measure_spread() {
   spread_.assign(n, 0.0f);
   for (size_t i = 0; i < n; ++i)
     if (hi[i] >= lo[i]) spread_[i] = hi[i] - lo[i];
+  emitted_.assign(n, 0.0f);
+  if (!s_.gather) return;
+  std::vector<double> e(n, 0.0);
+  for (size_t i = n; i-- > 0;) {
+    const HNode& node = h_[uint32_t(i)];
+    if (node.child_count == 0 && !node.cluster) e[i] = luminance(node.emission) * (s_.indirect ? node.send : 1.0) * node.area;
+    if (node.parent >= 0) e[size_t(node.parent)] += e[i];
+    emitted_[i] = node.area > 0 ? float(e[i] / node.area) : 0.0f;
+  }
+}
+
+bool Solver::gathered(uint32_t i) const {
+  const HNode& n = h_[i];
+  if (!s_.gather || n.cluster) return false;
+  if (s_.gathered && !(*s_.gathered)[n.polygon]) return false;
+  return !s_.twins || (*s_.twins)[n.polygon] == kNoTwin;
+}
+
+double Solver::sent_to(uint32_t receiver, uint32_t source) const {
+  const double all = luminance(sent(h_[source]));
+  if (!gathered(receiver)) return all;
+  // A node made this round: its parent's (an element's children share its emission).
+  uint32_t j = source;
+  while (j >= emitted_.size() && h_[j].parent >= 0) j = uint32_t(h_[j].parent);
+  return j < emitted_.size() ? std::max(0.0, all - double(emitted_[j])) : all;
 }
 
 void Solver::measure_variation() {
@@ -99,17 +124,23 @@ void Solver::measure_variation() {
       const HNode& n = h_[uint32_t(i)];
       const uint32_t kids = n.cluster ? n.child_count : 4;
       if (n.links.empty() || kids < 2 || kids > 4) continue;
-      double H = 0, Hc[4] = {};
+      // The refinement measures everything the links carry; the estimate, at a gathered receiver, only
+      // what they still bring to its vertices (the gather evaluates the emitters' light there).
+      double H = 0, Hc[4] = {}, G = 0, Gc[4] = {};
       for (const Link& l : n.links) {
-        const double b = luminance(sent(h_[l.source])) * l.F;
+        const double b = luminance(sent(h_[l.source])) * l.F, g = sent_to(uint32_t(i), l.source) * l.F;
         H += b;
-        for (uint32_t k = 0; k < kids; ++k) Hc[k] += b * double(l.share[k]);
+        G += g;
+        for (uint32_t k = 0; k < kids; ++k) {
+          Hc[k] += b * double(l.share[k]);
+          Gc[k] += g * double(l.share[k]);
+        }
       }
       double worst = 0, squares = 0;
       for (uint32_t k = 0; k < kids; ++k) {
         const double rho = luminance(n.child_count ? h_[h_.child(n, k)].rho : n.rho);
         worst = std::max(worst, rho * std::fabs(Hc[k] - H));
-        squares += rho * rho * (Hc[k] - H) * (Hc[k] - H);
+        squares += rho * rho * (Gc[k] - G) * (Gc[k] - G);
       }
       variation_[i] = float(worst);
       // Shares already give each child its own mean (the push and the vertices use them), so what is
@@ -192,7 +223,7 @@ void Solver::measure_left_error() {
     double sq = double(left_[i]) * double(left_[i]);
     const double rho = luminance(n.rho);
     for (const Link& l : n.links) {
-      const double source = source_error(n, l), noise = rho * luminance(sent(h_[l.source])) * l.sigma;
+      const double source = source_error(n, l), noise = rho * sent_to(i, l.source) * l.sigma;
       sq += source * source + noise * noise;
     }
     n.error = float(std::sqrt(sq));

@@ -1,5 +1,9 @@
 #include "walkrad/hierarchical/point_radiosity.h"
 
+#include <algorithm>
+#include <cmath>
+
+
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
@@ -11,14 +15,30 @@ namespace {
 
 // Centre distances below this many times the two radii count as near.
 constexpr double kNear = 3.0;
+// At a gathered vertex, a source farther than this many times its radius is taken as a disc of its area
+// (A cos θ cos θ' / (π r² + A)): on office-floor's 8 rooms the contour formula at every vertex for every
+// element source took 30 s of the bake's 77 (16 s with 8). On the Cornell box 4, 8 and ∞ gave 1.01,
+// 0.95 and 0.92% weighted RMS.
+constexpr double kFar = 4.0;
 
 }  // namespace
 
 ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vector<PunctualLight>* lights, const RayScene* rays)
     : h_(h), indirect_(indirect), lights_(lights && !lights->empty() ? lights : nullptr), rays_(rays),
-      H_(h.scene().polygons.size()), row_(h.scene().polygons.size(), 0.0) {
+      H_(h.scene().polygons.size()), Hg_(h.scene().polygons.size()), row_(h.scene().polygons.size(), 0.0),
+      emitted_(h.nodes().size()) {
+  for (size_t k = h.nodes().size(); k-- > 0;) {  // children first
+    const HNode& n = h[uint32_t(k)];
+    if (n.child_count == 0) {
+      emitted_[k] = n.cluster ? Vec3{} : n.emission * n.send;
+      continue;
+    }
+    Vec3 e;
+    for (uint32_t c = 0; c < n.child_count; ++c) e += emitted_[h.child(n, c)] * h[h.child(n, c)].area;
+    emitted_[k] = n.area > 0 ? e / n.area : Vec3{};
+  }
   // Down the cluster tree, each cluster's links added to its parent's, by direction.
-  std::vector<DirectionalIrradiance> cube;
+  std::vector<DirectionalIrradiance> cube, cube_g;
   std::vector<uint32_t> slot(h.nodes().size(), UINT32_MAX);
   for (uint32_t k = 0; k < h.nodes().size(); ++k) {  // parents first
     const HNode& n = h[k];
@@ -26,28 +46,39 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
     if (n.cluster) {
       slot[k] = uint32_t(cube.size());
       cube.push_back(parent >= 0 ? cube[slot[size_t(parent)]] : DirectionalIrradiance{});
+      cube_g.push_back(parent >= 0 ? cube_g[slot[size_t(parent)]] : DirectionalIrradiance{});
       for (const Link& l : n.links) {
-        const HNode& s = h[l.source];
-        cube.back().add(n, link_direction(n, s), l.F, indirect ? s.Bt : s.emission);
+        const Vec3 u = link_direction(n, h[l.source]);
+        cube.back().add(n, u, l.F, sent(l.source, false));
+        cube_g.back().add(n, u, l.F, sent(l.source, true));
       }
     } else if (n.depth == 0 && parent >= 0) {
-      const DirectionalIrradiance& c = cube[slot[size_t(parent)]];
-      H_[n.polygon] = c.at(n.normal);
-      row_[n.polygon] = c.row(n.normal);
+      const uint32_t c = slot[size_t(parent)];
+      H_[n.polygon] = cube[c].at(n.normal);
+      Hg_[n.polygon] = cube_g[c].at(n.normal);
+      row_[n.polygon] = cube[c].row(n.normal);
     }
   }
 }
 
+Vec3 ClusterGather::sent(uint32_t node, bool gathered) const {
+  const HNode& s = h_[node];
+  if (!indirect_) return gathered ? Vec3{} : s.emission;
+  return gathered ? s.Bt - emitted_[node] : s.Bt;
+}
+
 LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting)
-    : clusters_(clusters), h_(clusters.hierarchy()), leaf_(leaf), indirect_(clusters.indirect()),
+    : clusters_(clusters), h_(clusters.hierarchy()), leaf_(leaf),
       flat_(h_[leaf].cluster || transmitting) {
   if (flat_) return;
   const Hierarchy& h = h_;
-  const bool indirect = indirect_;
   const HNode& n = h[leaf];
   quadrants_ = split_element(n.shape);
-  H_.fill(clusters.H(n.polygon));
+  H_.fill(clusters.H(n.polygon, false));
+  Hg_.fill(clusters.H(n.polygon, true));
+  Hf_ = H_;
   row_.fill(clusters.row(n.polygon));
+  rowg_ = row_;
   uint32_t below = leaf;  // the child of a on the way to the leaf: the element chain only
   for (int32_t a = int32_t(leaf); a >= 0 && !h[uint32_t(a)].cluster; below = uint32_t(a), a = h[uint32_t(a)].parent) {
     const HNode& r = h[uint32_t(a)];
@@ -55,35 +86,64 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
     const uint32_t slot = own ? 0 : child_slot(h, below);
     for (const Link& l : r.links) {
       const HNode& s = h[l.source];
-      const Vec3 sent = indirect ? s.Bt : s.emission;
+      const Vec3 sent = clusters.sent(l.source, false), reflected = clusters.sent(l.source, true);
       // A source element near the receiver: the point's own form factor (the kernel changes within a
-      // share's quadrant there; farther, the shares say enough).
-      if (!s.cluster && l.open > 0 && length(s.center - r.center) < kNear * (r.radius + s.radius)) {
-        near_.push_back({l.source, l.F / double(l.open)});
-        continue;
-      }
+      // share's quadrant there; farther, the shares say enough). At a gathered vertex every element
+      // source is taken at the point: the gather is what the walkthrough sees, and a quadrant's share
+      // placed at a vertex is a staircase that Gouraud shading smooths into the wrong ramp.
+      const bool point_form = !s.cluster && l.open > 0;
+      const bool close = point_form && length(s.center - r.center) < kNear * (r.radius + s.radius);
+      if (point_form) near_.push_back({l.source, l.F / double(l.open), close});
       // As the solve pushes it: by the part's share (the leaf's own links by the quadrant the point
       // falls in).
       for (uint32_t q = 0; q < 4; ++q) {
         const double f = l.F * double(l.share[own ? q : slot]);
-        H_[q] += sent * f;
-        row_[q] += f;
+        if (!close) {
+          H_[q] += sent * f;
+          row_[q] += f;
+        }
+        if (!point_form) {
+          Hf_[q] += sent * f;
+          Hg_[q] += reflected * f;
+          rowg_[q] += f;
+        }
       }
     }
   }
 }
 
-Vec3 LeafRadiosity::at(const Vec3& x) const {
+Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   const HNode& n = h_[leaf_];
   if (flat_) return n.B;
   const uint32_t q = quadrant_of(quadrants_, n.normal, x);
-  Vec3 H = H_[q];
-  double row = row_[q];
+  Vec3 H = gathered ? Hf_[q] : H_[q], Hg = Hg_[q];
+  double row = gathered ? rowg_[q] : row_[q];
   for (const Near& s : near_) {
+    if (!gathered && !s.close) continue;
     const HNode& src = h_[s.source];
-    const double f = dot(x - src.shape.v[0], src.normal) > 0 ? point_to_polygon(x, n.normal, src.shape) * s.visible : 0.0;
-    H += (indirect_ ? src.Bt : src.emission) * f;
+    double f = 0;
+    const Vec3 d = src.center - x;
+    const double r2 = dot(d, d);
+    if (!s.close && r2 > kFar * kFar * src.radius * src.radius) {
+      // Far: a disc of the source's area, exact on its axis, many times cheaper than the contour.
+      const double r = std::sqrt(r2);
+      f = src.area * std::max(0.0, dot(d, n.normal) / r) * std::max(0.0, -dot(d, src.normal) / r) / (kPi * r2 + src.area) *
+          s.visible;
+    } else if (dot(x - src.shape.v[0], src.normal) > 0) {
+      f = point_to_polygon(x, n.normal, src.shape) * s.visible;
+    }
+    H += clusters_.sent(s.source, false) * f;
+    if (gathered) Hg += clusters_.sent(s.source, true) * f;
     row += f;
+  }
+  // Gathered: the links' direct light H − Hg leaves for the gather's exact D. What the leaf's receive
+  // factor adds (a closed scene's rows scaled to 1: the part of the hemisphere its links miss, filled
+  // at the mean of what they see) stays as the solve has it; a factor below 1 (a coincident row
+  // clamped) scales the reflected part only.
+  if (gathered) {
+    // c: the leaf's factor on what it gathers (its receive factor, or the clamp of a coincident row).
+    const double c = leaf_irradiance(n, Vec3(1, 1, 1), row).x;
+    return n.emission + mul(n.rho, Hg * c + (H - Hg) * std::max(0.0, c - 1.0));
   }
   uint64_t rays = 0;
   const Vec3 D = clusters_.lights() ? point_irradiance(x, n.normal, *clusters_.lights(), clusters_.rays(), rays) : n.D;

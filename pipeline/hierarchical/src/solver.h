@@ -93,6 +93,13 @@ class Solver {
   // What a node sends along its links (the gather's source term).
   const Vec3& sent(const HNode& n) const { return s_.indirect ? n.Bt : n.emission; }
 
+  // Whether node i's radiosity reaches the display through the final gather (HierarchicalSettings::
+  // gathered): its direct light from area emitters is evaluated at the vertices, not taken from links.
+  bool gathered(uint32_t i) const;
+  // The luminance of what a source sends that a gathered receiver takes from its links: sent less
+  // the source's own emission (as sent).
+  double sent_to(uint32_t receiver, uint32_t source) const;
+
   // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
   // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
   double transfer_estimate(const HNode& ri, const HNode& sj) const;
@@ -224,6 +231,7 @@ class Solver {
   std::vector<float> variation_;  // by node (measure_variation)
   std::vector<float> left_;       // by node (measure_variation): the RMS error its variation leaves
   std::vector<float> spread_;     // by node: the range of its leaves' sent radiosity (measure_spread)
+  std::vector<float> emitted_;    // by node: the luminance of its leaves' emission as sent, area mean (measure_spread)
   std::vector<float> weight_;     // by node: its display weight (update_scales)
   std::vector<DirectionalIrradiance> cube_;  // by cluster node (all made at the start): its own links' gather
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,

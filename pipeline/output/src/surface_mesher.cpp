@@ -65,7 +65,7 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
 
 }  // namespace
 
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at) {
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather) {
   SurfaceMesh surface;
   if (faces.empty()) return surface;
   Bounds bounds;
@@ -163,35 +163,65 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // 4. Vertex radiosity: area-weighted over the faces of one group that have the vertex on their boundary,
   // of each face's radiosity or of the solution at the vertex seen from each face (a point a thousandth
   // of the way in towards the face's centre: on a neighbour's plane the contour formula says nothing).
+  std::unordered_map<uint64_t, uint32_t> slot;  // (point, group) → accumulator
+  std::vector<uint32_t> slot_point, face_slots(boundary.size());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const uint64_t g = group[faces[i].polygon];
+    for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
+      const auto [it, fresh] = slot.try_emplace(uint64_t(boundary[j]) * polygons + g, uint32_t(slot_point.size()));
+      if (fresh) slot_point.push_back(boundary[j]);
+      face_slots[j] = it->second;
+    }
+  }
+  const size_t slots = slot_point.size();
+  const bool gathering = at && gather.seen && gather.direct;
+  std::vector<uint8_t> face_seen(gathering ? faces.size() : 0), gathered(slots, 0);
+  if (gathering)
+    for (size_t i = 0; i < faces.size(); ++i)
+      if ((face_seen[i] = gather.seen(i)))
+        for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) gathered[face_slots[j]] = 1;
   std::vector<Vec3> value(boundary.size()), centre_value(faces.size());
   if (at) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         const Vec3 c = polygon_centroid(faces[i].shape);
         const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
-        if (fanned) centre_value[i] = at(i, c);
+        if (fanned) {
+          const bool seen = gathering && face_seen[i];
+          const uint32_t self = uint32_t(i);
+          centre_value[i] = at(i, c, seen);
+          if (seen) centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
+        }
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
-          value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * 1e-3);
+          value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * 1e-3, gathered[face_slots[j]]);
       }
     });
   }
-  std::unordered_map<uint64_t, uint32_t> slot;  // (point, group) → accumulator
-  std::vector<Vec3> sum;
-  std::vector<double> weight;
-  std::vector<uint32_t> slot_point, face_slots(boundary.size());
-  for (size_t i = 0; i < faces.size(); ++i) {
-    const uint64_t g = group[faces[i].polygon];
+  std::vector<Vec3> sum(slots), rho(slots);
+  std::vector<double> weight(slots, 0.0);
+  for (size_t i = 0; i < faces.size(); ++i)
     for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-      const auto [it, fresh] = slot.try_emplace(uint64_t(boundary[j]) * polygons + g, uint32_t(sum.size()));
-      if (fresh) {
-        sum.push_back(Vec3());
-        weight.push_back(0.0);
-        slot_point.push_back(boundary[j]);
-      }
-      face_slots[j] = it->second;
-      sum[it->second] += (at ? value[j] : faces[i].radiosity) * faces[i].area;
-      weight[it->second] += faces[i].area;
+      const uint32_t s = face_slots[j];
+      sum[s] += (at ? value[j] : faces[i].radiosity) * faces[i].area;
+      rho[s] += faces[i].rho * faces[i].area;
+      weight[s] += faces[i].area;
     }
+  if (gathering) {
+    // Each gathered vertex's faces (in face order), then its direct light, once.
+    std::vector<uint32_t> begin(slots + 1, 0), members(boundary.size());
+    for (uint32_t j = 0; j < boundary.size(); ++j) ++begin[face_slots[j] + 1];
+    for (size_t s = 0; s < slots; ++s) begin[s + 1] += begin[s];
+    std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) members[fill[face_slots[j]]++] = uint32_t(i);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, slots, 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t s = r.begin(); s != r.end(); ++s) {
+        if (!gathered[s]) continue;
+        const uint32_t* f = members.data() + begin[s];
+        const Vec3 D = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
+        sum[s] += mul(rho[s], D);  // ρ summed by area as sum is: both divided by weight below
+      }
+    });
   }
 
   // 5. Output: vertices in order of first use, then each face's triangles (a fan from its centre

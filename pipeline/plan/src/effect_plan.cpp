@@ -123,10 +123,10 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes) {
   for (const auto& [name, value] : overrides) {
     if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
-        name != "punctual" && name != "transmission" && name != "textures" && name != "volumes")
+        name != "punctual" && name != "transmission" && name != "textures" && name != "volumes" && name != "gather")
       throw InputError("--effect", name,
                        "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission, "
-                       "textures, volumes)",
+                       "textures, volumes, gather)",
                        kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
@@ -205,6 +205,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                      : !has_volumes           ? "the scene has no volume cluster"
                                               : "visibility is off: there is nothing to see through",
                      kExitBadArguments);
+  plan.gather = plan_gather(scene, views, method, overrides);
   if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {
     plan.indirect.on = true;
     plan.indirect.reason = "light passes through transmitting surfaces: it needs the gather";
@@ -225,7 +226,8 @@ nlohmann::json EffectPlan::to_json() const {
   return {{"indirect", effect_json(indirect)}, {"visibility", effect_json(visibility)},
           {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
           {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)},
-          {"textures", effect_json(textures)}, {"volumes", effect_json(volumes)}};
+          {"textures", effect_json(textures)}, {"volumes", effect_json(volumes)},
+          {"gather", effect_json(gather)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -240,7 +242,26 @@ std::string EffectPlan::explain() const {
   line("transmission", transmission);
   line("textures", textures);
   line("volumes", volumes);
+  line("gather", gather);
   return out;
+}
+
+Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
+                   const std::map<std::string, std::string>& overrides) {
+  size_t emitters = 0;
+  for (const Polygon& p : scene.polygons) emitters += scene.materials[p.material].emits() ? 1 : 0;
+  Effect e;
+  e.on = emitters > 0 && method == "hierarchical";
+  const std::string where = views.empty() ? "at every vertex (no viewpoints)" : "at the vertices of the polygons the viewpoints see";
+  e.reason = method != "hierarchical" ? "classic method: vertices take the elements' radiosity"
+             : emitters == 0          ? "no area emitter: the links' light is all indirect"
+                                      : std::to_string(emitters) + " emitting polygons: their direct light evaluated " + where +
+                                   " (shadow rays to each emitter; the links bring the indirect)";
+  apply_override(e, "gather", overrides);
+  if (e.on && (emitters == 0 || method != "hierarchical"))
+    throw InputError("--effect", "gather", emitters == 0 ? "the scene has no emitting polygon" : "the final gather exists only in the hierarchical method",
+                     kExitBadArguments);
+  return e;
 }
 
 Effect plan_transmission(const Scene& scene, const std::string& method, const std::map<std::string, std::string>& overrides) {

@@ -8,6 +8,7 @@
 //   its order chosen from the distance/size ratio (the kernel varies fastest where elements touch).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "walkrad/formats/scene.h"
@@ -18,8 +19,14 @@ namespace walkrad {
 // polygon's plane, or a polygon entirely below the point's horizon, gets 0 (never NaN).
 double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly);
 
-// Clips poly to the half-space dot(x - p, n) >= 0; returns the clipped vertices (possibly empty).
-std::vector<Vec3> clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count);
+// Clips a polygon of at most 4 corners to the half-space dot(x - p, n) >= 0: its corners (possibly
+// none), on the stack (the contour formula runs millions of times in a bake). Each edge keeps at most
+// its start and one crossing: 8 corners at most, 5 for a convex polygon.
+struct ClippedPolygon {
+  std::array<Vec3, 8> v;
+  int count = 0;
+};
+ClippedPolygon clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count);
 
 // A quadrature point on a receiver: position and weight (weights sum to the receiver's area).
 struct QuadraturePoint {

@@ -6,6 +6,10 @@
 // element's by the share of the child or quadrant the point lies in). The leaf's mean B is what the
 // solve balances; a vertex is where the display interpolates, and an area mean placed at a vertex
 // flattens every peak and fills every trough the leaf straddles (docs/numerics.md, "Vertex radiosity").
+// For a vertex of the final gather (final_gather.h) the direct light is evaluated at the point apart:
+// there the sources send only what they reflect (Bt less their emission as sent) and punctual lights
+// are left out, B(x) = E + ρ H_indirect(x), and the gather adds ρ D(x); and every element source, near
+// or far, takes the point's own form factor (times the fraction of it the link sees).
 #pragma once
 
 #include <array>
@@ -28,8 +32,12 @@ class ClusterGather {
   bool indirect() const { return indirect_; }
   const std::vector<PunctualLight>* lights() const { return lights_; }
   const RayScene* rays() const { return rays_; }
-  // Irradiance and row sum at an element root (a polygon's), from every cluster above it.
-  const Vec3& H(uint32_t polygon) const { return H_[polygon]; }
+  // Irradiance and row sum at an element root (a polygon's), from every cluster above it; gathered:
+  // indirect light only.
+  const Vec3& H(uint32_t polygon, bool gathered) const { return gathered ? Hg_[polygon] : H_[polygon]; }
+  // What a node sends along a link: everything (Bt, or its emission without indirect light), or for
+  // a gathered vertex only what it reflects.
+  Vec3 sent(uint32_t node, bool gathered) const;
   double row(uint32_t polygon) const { return row_[polygon]; }
 
  private:
@@ -37,8 +45,9 @@ class ClusterGather {
   bool indirect_;
   const std::vector<PunctualLight>* lights_;
   const RayScene* rays_;
-  std::vector<Vec3> H_;
+  std::vector<Vec3> H_, Hg_;
   std::vector<double> row_;
+  std::vector<Vec3> emitted_;  // per node: its emission as sent (× send), area-averaged like Bt
 };
 
 // The solution over one leaf: what does not depend on the point (per quadrant of the leaf) gathered
@@ -48,21 +57,23 @@ class LeafRadiosity {
   // A leaf of a transmitting polygon (with a twin), or a cluster, keeps its mean B.
   LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting = false);
 
-  // B at a point of the leaf.
-  Vec3 at(const Vec3& x) const;
+  // B at a point of the leaf; gathered: without direct light (the final gather adds it).
+  Vec3 at(const Vec3& x, bool gathered = false) const;
 
  private:
   struct Near {
     uint32_t source;
     double visible;  // F / F_open of the link
+    bool close;      // near enough for the point's form factor at every vertex (else at gathered ones only)
   };
   const ClusterGather& clusters_;
   const Hierarchy& h_;
   uint32_t leaf_;
-  bool indirect_, flat_;
+  bool flat_;
   std::array<Polygon, 4> quadrants_;
-  std::array<Vec3, 4> H_{};
-  std::array<double, 4> row_{};
+  std::array<Vec3, 4> H_{};       // by the shares: every source but those near
+  std::array<Vec3, 4> Hf_{}, Hg_{};  // gathered: every source not taken at the point; all, reflected only
+  std::array<double, 4> row_{}, rowg_{};
   std::vector<Near> near_;
 };
 

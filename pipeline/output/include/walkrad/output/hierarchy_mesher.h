@@ -20,6 +20,10 @@ struct PointSolution {
   const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none) keep their mean
   const std::vector<PunctualLight>* lights = nullptr;  // shot at every vertex (null: the leaves' mean)
   const RayScene* rays = nullptr;               // their occluders (null: none)
+  // The final gather (final_gather.h) at the vertices of these input polygons (1: seen by the
+  // walkthrough; null: every polygon), when on.
+  bool gather = false;
+  const std::vector<uint8_t>* seen = nullptr;
 };
 
 // exposure: display colour = B/π × exposure, clamped to [0, 1].

@@ -35,17 +35,29 @@ struct MeshFace {
   Polygon shape;  // corners counter-clockwise seen from the front; shape.material is the face's material
   Vec3 normal;    // unit
   Vec3 radiosity; // B, W/m²
+  Vec3 rho;       // reflectance (the final gather's direct light is reflected by it)
   double area = 0;
   uint32_t polygon = 0;  // the (contact-split) scene polygon it lies on
 };
 
 // B at a point of face i (a corner nudged into the face, or its centre), where the solution can say
-// more than its face's mean (point_radiosity.h).
-using FaceRadiosity = std::function<Vec3(size_t face, const Vec3& point)>;
+// more than its face's mean (point_radiosity.h); gathered: without the direct light, which the final
+// gather evaluates at the vertex.
+using FaceRadiosity = std::function<Vec3(size_t face, const Vec3& point, bool gathered)>;
+
+// The final gather (final_gather.h): a vertex one of whose faces is seen takes, besides the faces'
+// at(face, point, true), their mean ρ times direct(vertex, normal, its faces), evaluated once at the
+// vertex itself; a fanned face's centre likewise when the face is seen.
+struct VertexGather {
+  std::function<bool(size_t face)> seen;
+  std::function<Vec3(const Vec3& point, const Vec3& normal, const uint32_t* faces, size_t count)> direct;
+};
 
 // exposure: display colour = B/π × exposure, clamped to [0, 1]. at: when given, each vertex takes the
-// area-weighted mean of at(face, point) over its faces instead of their mean radiosity. Deterministic:
-// the output depends only on the faces and their order.
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at = {});
+// area-weighted mean of at(face, point) over its faces instead of their mean radiosity; gather (with
+// at): the final gather at the vertices it sees. Deterministic: the output depends only on the faces
+// and their order.
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at = {},
+                       const VertexGather& gather = {});
 
 }  // namespace walkrad

@@ -16,7 +16,9 @@
 //                 coordinates (texture_sampling.h); off: each material's average;
 //   volumes     — volumetric visibility through clusters of many small objects (volume_clusters.h,
 //                 volume_visibility.h; hierarchical method, with visibility): only if the scene has such
-//                 clusters; off: exact rays everywhere.
+//                 clusters; off: exact rays everywhere;
+//   gather      — the final gather (final_gather.h): area emitters' direct light evaluated at the output
+//                 vertices the viewpoints see (every vertex without viewpoints; hierarchical method).
 // Indirect light and visibility take punctual lights into account (a reflector in front of one; a
 // light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
@@ -42,7 +44,7 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes;
+  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes, gather;
   bool closed = false;  // no ray from any surface escapes (hierarchical method only): rows scaled to 1
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
@@ -53,6 +55,10 @@ struct EffectPlan {
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
                         bool view_independent, const std::string& method,
                         const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr);
+
+// The gather entry: on where the hierarchical method meets an emitting polygon; overrides as plan_effects'.
+Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
+                   const std::map<std::string, std::string>& overrides);
 
 // Applies an --effect override (NAME → "on" or "off", already checked) to e: forced, with the analysis's
 // reason kept.

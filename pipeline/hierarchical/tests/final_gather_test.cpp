@@ -1,0 +1,96 @@
+// The final gather's direct light (final_gather.h) against exact answers: a square emitter over a
+// floor, a plate half-way that casts a shadow. In full view the gather is the contour formula itself;
+// in the umbra it is 0; in the penumbra the kernel-weighted fraction of the emitter's points seen
+// must give the contour formula of the part of the emitter that the point sees.
+#include <gtest/gtest.h>
+
+#include "walkrad/formfactor/form_factor.h"
+#include "walkrad/hierarchical/final_gather.h"
+#include "walkrad/hierarchical/hierarchical_solver.h"
+#include "walkrad/scene/cluster_tree.h"
+#include "walkrad/testing/test_scenes.h"
+
+namespace walkrad {
+namespace {
+
+using test::quad;
+
+constexpr double kEmission = 2.0;
+
+// Floor y = 0 (up), emitter 0.5 × 0.5 at y = 1 (down) over the origin, a plate at y = 0.5 from
+// x = −0.1 to 1 across the whole depth (facing up).
+Scene shadow_scene() {
+  Scene s;
+  s.source = "final gather test";
+  s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {0, 0, 0}});
+  s.materials.push_back({"lamp", {0, 0, 0}, {kEmission, kEmission, kEmission}});
+  s.polygons.push_back(quad({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0));
+  s.polygons.push_back(quad({-0.25, 1, -0.25}, {0.25, 1, -0.25}, {0.25, 1, 0.25}, {-0.25, 1, 0.25}, 1));
+  s.polygons.push_back(quad({-0.1, 0.5, -1}, {-0.1, 0.5, 1}, {1, 0.5, 1}, {1, 0.5, -1}, 0));
+  for (const Polygon& p : s.polygons) EXPECT_GT(dot(polygon_normal(p), Vec3(0, 1, 0)) * (p.material == 1 ? -1 : 1), 0.99);
+  return s;
+}
+
+class FinalGather : public ::testing::Test {
+ protected:
+  Scene scene = shadow_scene();
+  ClusterTree tree = build_cluster_tree(scene);
+  RayScene rays{scene};
+  Hierarchy h{scene, tree};
+  const Vec3 up{0, 1, 0};
+  const Polygon& lamp() const { return scene.polygons[1]; }
+  Vec3 direct(const Vec3& x, uint64_t& cast) const {
+    const DirectGather g(h, nullptr, &rays);
+    return g.at(x, up, Vec3{}, {{0, uint32_t(g.emitter_count())}}, cast);
+  }
+};
+
+TEST_F(FinalGather, InFullViewIsTheContourFormula) {
+  uint64_t cast = 0;
+  const Vec3 x(-1.5, 0, 0.3);
+  EXPECT_NEAR(direct(x, cast).x, kEmission * point_to_polygon(x, up, lamp()), 1e-12);
+  EXPECT_EQ(cast, 16u);  // all 16 first rays agree: no second pass
+}
+
+TEST_F(FinalGather, InTheUmbraIsZero) {
+  uint64_t cast = 0;
+  EXPECT_EQ(direct({0.6, 0, 0}, cast).x, 0.0);
+  EXPECT_EQ(cast, 16u);
+}
+
+TEST_F(FinalGather, InThePenumbraSeesThePartOfTheEmitterInView) {
+  // From x = (−0.2, 0, 0) the plate's edge at x = −0.1, half-way up, hides the lamp's half x > 0.
+  const Vec3 x(-0.2, 0, 0);
+  Polygon seen = lamp();
+  for (Vec3& v : seen.v) v.x = std::min(v.x, 0.0);
+  const double exact = kEmission * point_to_polygon(x, up, seen);
+  uint64_t cast = 0;
+  const double gathered = direct(x, cast).x;
+  EXPECT_EQ(cast, 80u);  // the first 16 disagree: 64 more
+  EXPECT_NEAR(gathered, exact, 0.05 * exact);
+  EXPECT_EQ(direct(x, cast).x, gathered);  // the same point draws the same points
+}
+
+TEST_F(FinalGather, TakesTheEmittersTheLinksReach) {
+  HierarchicalSettings s;
+  HierarchicalStats stats;
+  solve_hierarchical(h, rays, s, stats);
+  const DirectGather g(h, nullptr, &rays);
+  ASSERT_EQ(g.emitter_count(), 1u);
+  // A floor leaf in full view of the lamp: its links reach the lamp.
+  const Vec3 x(-1.5, 0, 0.3);
+  const uint32_t leaf = leaf_at(h, h.polygon_root(0), x);
+  EXPECT_EQ(g.candidates(leaf), (EmitterRanges{{0, 1}}));
+  uint64_t cast = 0;
+  EXPECT_EQ(g.at(x, up, Vec3{}, {}, cast).x, 0.0);  // none asked for, none gathered
+  EXPECT_EQ(cast, 0u);
+}
+
+TEST(EmitterRanges, MergeSortedAndDisjoint) {
+  EmitterRanges a = {{0, 2}, {5, 7}};
+  merge_ranges(a, {{1, 3}, {7, 9}, {12, 13}});
+  EXPECT_EQ(a, (EmitterRanges{{0, 3}, {5, 9}, {12, 13}}));
+}
+
+}  // namespace
+}  // namespace walkrad
