@@ -77,6 +77,8 @@ expect("no-emitter", [dark], 3, dark, "no emitter")
 
 # Bad arguments.
 expect("bad-arguments", [cornell, "--rays", "0"], 2)
+expect("southwell-hierarchical", [cornell, "--solver", "southwell"], 2, "--solver", "classic method")
+expect("gather-classic", [cornell, "--method", "classic", "--effect", "gather=on"], 2, "--effect", "hierarchical")
 
 # A .glb whose header claims 4 GB: refused at once, naming the header.
 lying = os.path.join(work, "lying.glb")

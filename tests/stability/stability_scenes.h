@@ -17,6 +17,7 @@
 #include "walkrad/hierarchical/hierarchy_audit.h"
 #include "walkrad/classic/form_factor_matrix.h"
 #include "walkrad/classic/gauss_seidel.h"
+#include "walkrad/classic/southwell.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/visibility/ray_scene.h"
 #include "walkrad/classic/subdivision.h"
@@ -78,7 +79,9 @@ struct Solution {
   Scene scene;                    // the contact-split scene the solution refers to
 };
 
-inline Solution solve_classic(const Scene& input, double element_size, bool accelerate = true, int rays_per_point = 1) {
+// southwell: progressive refinement (southwell.h) instead of Gauss-Seidel; iterations then counts shots.
+inline Solution solve_classic(const Scene& input, double element_size, bool accelerate = true, int rays_per_point = 1,
+                              bool southwell = false) {
   Solution s;
   ContactSplitStats split;
   s.scene = split_contacts(input, split);
@@ -98,12 +101,19 @@ inline Solution solve_classic(const Scene& input, double element_size, bool acce
     s.centroid.push_back(e.centroid);
     s.polygon.push_back(e.polygon);
   }
-  SolveSettings settings;
-  settings.accelerate = accelerate;
-  SolveStats stats;
-  s.B = solve_gauss_seidel(f, s.area, rho, emission, settings, stats);
-  s.iterations = stats.iterations;
-  s.converged = stats.converged;
+  if (southwell) {
+    SouthwellStats stats;
+    s.B = solve_southwell(f, s.area, rho, emission, {}, stats);
+    s.iterations = int(stats.shots);
+    s.converged = stats.converged;
+  } else {
+    SolveSettings settings;
+    settings.accelerate = accelerate;
+    SolveStats stats;
+    s.B = solve_gauss_seidel(f, s.area, rho, emission, settings, stats);
+    s.iterations = stats.iterations;
+    s.converged = stats.converged;
+  }
   s.audit = audit_matrix(f, s.area, rho, emission, s.B);
   return s;
 }

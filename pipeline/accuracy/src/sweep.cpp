@@ -48,20 +48,30 @@ struct Run {
 std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
   std::vector<Run> runs;
   for (const std::string& method : s.methods) {
-    if (method == "classic") {
+    if (method == "classic" || method == "southwell") {
       std::vector<double> sizes = s.element_sizes;
       if (sizes.empty())
         for (double d : {10.0, 15.0, 21.0, 30.0}) sizes.push_back(diagonal / d);
-      for (double h : sizes) runs.push_back({"classic-" + number(h), method, NAN, h, {"--method", "classic", "--element-size", number(h)}});
+      for (double h : sizes)
+        runs.push_back({method + "-" + number(h), method, NAN, h,
+                        {"--method", "classic", "--element-size", number(h), "--solver", method == "classic" ? "gauss-seidel" : "southwell"}});
     } else if (method == "hierarchical" || method == "importance") {
       for (double e : s.errors) {
         Run r{method + "-" + number(e), method, e, NAN, {"--method", "hierarchical", "--error", number(e)}};
         if (method == "hierarchical") r.args.push_back("--view-independent");
         if (s.min_area > 0) r.args.insert(r.args.end(), {"--min-area", number(s.min_area)});
         runs.push_back(r);
+        // The same bake without an effect, to show what it buys (method "importance-no-gather", ...).
+        for (const std::string& effect : s.without) {
+          Run w = r;
+          w.method = method + "-no-" + effect;
+          w.name = w.method + "-" + number(e);
+          w.args.insert(w.args.end(), {"--effect", effect + "=off"});
+          runs.push_back(w);
+        }
       }
     } else {
-      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, hierarchical, importance)",
+      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, southwell, hierarchical, importance)",
                        kExitBadArguments);
     }
   }

@@ -16,10 +16,21 @@ folder = sys.argv[1] if len(sys.argv) > 1 else "."
 doc = json.load(open(os.path.join(folder, "sweep.json")))
 runs = doc["runs"]
 ref = doc["reference"]
-LABELS = {"classic": "classic (element size)", "hierarchical": "hierarchical, view-independent (requested error)",
+LABELS = {"classic": "classic (element size)", "southwell": "classic, progressive refinement (element size)",
+          "hierarchical": "hierarchical, view-independent (requested error)",
           "importance": "hierarchical, importance-driven (requested error)"}
-STYLE = {"classic": ("tab:gray", "s"), "hierarchical": ("tab:blue", "o"), "importance": ("tab:red", "^")}
-methods = [m for m in ["classic", "hierarchical", "importance"] if any(r["method"] == m for r in runs)]
+STYLE = {"classic": ("tab:gray", "s"), "southwell": ("tab:brown", "D"), "hierarchical": ("tab:blue", "o"),
+         "importance": ("tab:red", "^")}
+# Variants without an effect (sweep --without): "importance-no-gather" and the like, dashed.
+methods = []
+for r in runs:
+    if r["method"] != "measured" and r["method"] not in methods:
+        methods.append(r["method"])
+for m in methods:
+    base = m.split("-no-")[0]
+    LABELS.setdefault(m, LABELS.get(base, base) + ", without " + m.split("-no-")[-1] if "-no-" in m else m)
+    STYLE.setdefault(m, (STYLE.get(base, ("tab:purple", "v"))[0], "x"))
+CLASSIC = ("classic", "southwell")  # by element size, not requested error
 
 
 def of(method):
@@ -77,7 +88,7 @@ fig.savefig(os.path.join(folder, "error_vs_time.png"), dpi=90)
 fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
 for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axes[1], "peak_rss_mib", "peak memory (MiB)")]:
     for m in methods:
-        if m == "classic":
+        if m in CLASSIC:
             continue
         rs = sorted(of(m), key=lambda r: r["error"])
         colour, marker = STYLE[m]
@@ -90,15 +101,16 @@ for ax, key, label in [(axes[0], "links", "links (classic: facing pairs)"), (axe
     ax.grid(True, which="both", alpha=0.3)
     if key == "peak_rss_mib":
         plain_numbers(ax.yaxis)
-    if "classic" in methods:
+    if any(m in methods for m in CLASSIC):
         top = ax.twiny()
-        rs = sorted(of("classic"), key=lambda r: -r["element_size"])
-        colour, marker = STYLE["classic"]
-        top.plot([r["element_size"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS["classic"])
+        for m in [m for m in CLASSIC if m in methods]:
+            rs = sorted(of(m), key=lambda r: -r["element_size"])
+            colour, marker = STYLE[m]
+            top.plot([r["element_size"] for r in rs], [r[key] for r in rs], marker=marker, color=colour, label=LABELS[m])
         top.set_xscale("log")
         top.invert_xaxis()
         plain_numbers(top.xaxis)
-        top.set_xlabel("classic: element size (m)", color=colour)
+        top.set_xlabel("classic: element size (m)", color=STYLE["classic"][0])
         top.legend(fontsize=8, loc="lower right")
 axes[0].legend(fontsize=8, loc="upper left")
 fig.suptitle(os.path.basename(doc["scene"]) + ": links and memory", fontsize=11)

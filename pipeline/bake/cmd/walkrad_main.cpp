@@ -35,8 +35,10 @@ int main(int argc, char** argv) {
   std::string quality;
   bake_cmd->add_option("--quality", quality, "hierarchical: draft, medium, high (the default) or final: a preset --error")
       ->check(CLI::IsMember({"draft", "medium", "high", "final"}))->excludes(error_opt);
-  bake_cmd->add_option("--solver", bs.solver, "hierarchical: gauss-seidel or jacobi")
-      ->check(CLI::IsMember({"gauss-seidel", "jacobi"}))->capture_default_str();
+  bake_cmd->add_option("--solver", bs.solver,
+                       "gauss-seidel (both methods), jacobi (hierarchical) or southwell (classic: progressive refinement, "
+                       "shooting the most unshot power first)")
+      ->check(CLI::IsMember({"gauss-seidel", "jacobi", "southwell"}))->capture_default_str();
   bake_cmd->add_flag("--view-independent", bs.view_independent,
                      "hierarchical: hold every surface to the error alike, not only what the viewpoints see");
   bake_cmd->add_option("--min-area", bs.min_area, "hierarchical: smallest element in m² (default: the median polygon's side / 128, squared)")
@@ -51,7 +53,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
   std::vector<std::string> effect_overrides;
   bake_cmd->add_option("--effect", effect_overrides,
-                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures|volumes=on|off (repeatable)");
+                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures|volumes|gather=on|off (repeatable)");
   bake_cmd->add_option("--penumbra-ratio", bs.volume_penumbra_ratio,
                        "hierarchical: a link sees through a volume cluster where its objects are smaller than this × the "
                        "link's penumbra width there")
@@ -114,8 +116,11 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("scene", ss.scene, "scene file (.gltf, .glb, .mgf)")->required();
   sweep_cmd->add_option("--views", ss.views, "walkthrough JSON (default: the scene's cameras)");
   sweep_cmd->add_option("-o,--output", ss.output, "output folder (default: <scene name>.sweep)");
-  sweep_cmd->add_option("--methods", ss.methods, "classic, hierarchical (view-independent), importance")
+  sweep_cmd->add_option("--methods", ss.methods,
+                        "classic (Gauss-Seidel), southwell (classic, progressive refinement), hierarchical (view-independent), importance")
       ->delimiter(',')->capture_default_str();
+  sweep_cmd->add_option("--without", ss.without,
+                        "also bake each hierarchical run with this effect off (e.g. gather): what the effect buys")->delimiter(',');
   sweep_cmd->add_option("--errors", ss.errors, "requested errors (--error) for the hierarchical methods")->delimiter(',')
       ->check(CLI::Range(1e-3, 1.0))->capture_default_str();
   sweep_cmd->add_option("--element-sizes", ss.element_sizes, "classic element sizes in metres (default: diagonal / 10, 15, 21, 30)")

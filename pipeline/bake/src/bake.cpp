@@ -93,6 +93,11 @@ BakeSummary bake(const BakeSettings& s) {
   const auto t_start = Clock::now();
   if (s.method != "classic" && s.method != "hierarchical")
     throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
+  if (s.solver == "southwell" && s.method != "classic")
+    throw InputError("--solver", s.solver, "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
+                     kExitBadArguments);
+  if (s.solver == "jacobi" && s.method == "classic")
+    throw InputError("--solver", s.solver, "the classic method solves by Gauss-Seidel or southwell", kExitBadArguments);
   std::unique_ptr<tbb::global_control> limit;
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();

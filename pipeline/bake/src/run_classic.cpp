@@ -9,6 +9,7 @@
 #include "method_run.h"
 #include "walkrad/classic/form_factor_matrix.h"
 #include "walkrad/classic/gauss_seidel.h"
+#include "walkrad/classic/southwell.h"
 #include "walkrad/classic/matrix_audit.h"
 #include "walkrad/classic/subdivision.h"
 #include "walkrad/core/progress.h"
@@ -80,8 +81,15 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   solve.tolerance = s.tolerance;
   solve.max_iterations = s.max_iterations;
   SolveStats stats;
+  SouthwellStats shooting;
   auto b = std::make_shared<std::vector<Vec3>>();
-  if (plan.indirect.on) {
+  if (plan.indirect.on && s.solver == "southwell") {
+    SouthwellSettings sw;
+    sw.tolerance = s.tolerance;
+    *b = solve_southwell(f, area, rho, emission, sw, shooting);
+    stats.converged = shooting.converged;
+    stats.last_update = shooting.unshot;
+  } else if (plan.indirect.on) {
     *b = solve_gauss_seidel(f, area, rho, emission, solve, stats);
   } else {  // direct light only: B = E + ρ (F E + D), one gather of the surfaces' own emission
     b->resize(n);
@@ -108,8 +116,13 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
               {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations},
               {"corrections", stats.corrections}, {"light_rays", light_rays}};
-  r.solver = {{"element_size", element_size}, {"converged", stats.converged}, {"last_update", stats.last_update},
-              {"tolerance", s.tolerance}};
+  r.solver = {{"element_size", element_size}, {"iteration", s.solver == "southwell" ? "southwell" : "gauss-seidel"},
+              {"converged", stats.converged}, {"last_update", stats.last_update}, {"tolerance", s.tolerance}};
+  if (s.solver == "southwell") {
+    r.counts["shots"] = shooting.shots;
+    r.solver["unshot"] = shooting.unshot;
+    r.solver["ambient"] = vec_json(shooting.ambient);
+  }
   r.energy = energy_json(energy.emitted, energy.absorbed);
   r.energy["residual_w"] = vec_json(energy.residual);
   r.audit = audit_json(audit_matrix(f, area, rho, emission, *b));

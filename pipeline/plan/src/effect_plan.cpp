@@ -251,12 +251,14 @@ Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, cons
   size_t emitters = 0;
   for (const Polygon& p : scene.polygons) emitters += scene.materials[p.material].emits() ? 1 : 0;
   Effect e;
-  e.on = emitters > 0 && method == "hierarchical";
-  const std::string where = views.empty() ? "at every vertex (no viewpoints)" : "at the vertices of the polygons the viewpoints see";
+  e.on = emitters > 0 && method == "hierarchical" && !views.empty();
   e.reason = method != "hierarchical" ? "classic method: vertices take the elements' radiosity"
              : emitters == 0          ? "no area emitter: the links' light is all indirect"
-                                      : std::to_string(emitters) + " emitting polygons: their direct light evaluated " + where +
-                                   " (shadow rays to each emitter; the links bring the indirect)";
+             : views.empty()
+                 ? "no viewpoints: nothing says which vertices are seen, they keep the solution's values "
+                   "(--effect gather=on gathers at every vertex)"
+                 : std::to_string(emitters) + " emitting polygons: their direct light evaluated at the vertices of the polygons "
+                                              "the viewpoints see (shadow rays to each emitter; the links bring the indirect)";
   apply_override(e, "gather", overrides);
   if (e.on && (emitters == 0 || method != "hierarchical"))
     throw InputError("--effect", "gather", emitters == 0 ? "the scene has no emitting polygon" : "the final gather exists only in the hierarchical method",

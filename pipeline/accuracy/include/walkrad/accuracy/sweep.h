@@ -21,6 +21,7 @@ struct SweepSettings {
   std::vector<double> errors = {0.4, 0.2, 0.1, 0.05};  // hierarchical --error values (the quality presets)
   std::vector<double> element_sizes;  // classic, metres; empty: the scene's diagonal / {10, 15, 21, 30}
   double min_area = 0;                // hierarchical --min-area (0: the bake's default)
+  std::vector<std::string> without;   // effects (e.g. gather): each hierarchical run again with NAME=off
   size_t points = 2048;               // reference sample points, over up to max_views viewpoints
   size_t max_views = 16;
   int samples = 8192;                 // paths per point (Cornell box 95% bar: 2.55% at 4096, 0.92% at 32768)

@@ -20,7 +20,8 @@ struct BakeSettings {
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
-  std::string solver = "gauss-seidel";  // hierarchical: "gauss-seidel" (by input polygon) or "jacobi"
+  std::string solver = "gauss-seidel";  // "gauss-seidel" (hierarchical: by input polygon), "jacobi" (hierarchical)
+                                        // or "southwell" (classic: progressive refinement, southwell.h)
   // hierarchical: the relative error each surface may show (where the walkthrough looks, with
   // importance), e.g. 0.02 for 2%; quality_error() maps the named presets to it.
   double error = 0.1;

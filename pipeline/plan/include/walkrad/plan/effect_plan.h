@@ -18,7 +18,8 @@
 //                 volume_visibility.h; hierarchical method, with visibility): only if the scene has such
 //                 clusters; off: exact rays everywhere;
 //   gather      — the final gather (final_gather.h): area emitters' direct light evaluated at the output
-//                 vertices the viewpoints see (every vertex without viewpoints; hierarchical method).
+//                 vertices of the polygons the viewpoints see (hierarchical method, with viewpoints;
+//                 forced on without them, at every vertex).
 // Indirect light and visibility take punctual lights into account (a reflector in front of one; a
 // light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
@@ -56,7 +57,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         bool view_independent, const std::string& method,
                         const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr);
 
-// The gather entry: on where the hierarchical method meets an emitting polygon; overrides as plan_effects'.
+// The gather entry: on where the hierarchical method meets an emitting polygon and viewpoints; overrides as
+// plan_effects'.
 Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
                    const std::map<std::string, std::string>& overrides);
 
