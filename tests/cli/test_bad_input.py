@@ -78,6 +78,7 @@ expect("no-emitter", [dark], 3, dark, "no emitter")
 # Bad arguments.
 expect("bad-arguments", [cornell, "--rays", "0"], 2)
 expect("southwell-hierarchical", [cornell, "--solver", "southwell"], 2, "--solver", "classic method")
+expect("hemicube-hierarchical", [cornell, "--form-factors", "hemicube"], 2, "--form-factors", "classic method")
 expect("gather-classic", [cornell, "--method", "classic", "--effect", "gather=on"], 2, "--effect", "hierarchical")
 
 # A .glb whose header claims 4 GB: refused at once, naming the header.

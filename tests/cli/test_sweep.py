@@ -3,7 +3,7 @@
 sizes for the classic one): sweep.csv has every documented field and a row per bake; for every method
 the error against the path-traced reference falls as the setting gets finer, by more than the
 reference's own error bar; the plots, report.md and reference image are written. A second sweep on the
-same reference measures progressive refinement (--methods southwell) and bakes without the final gather
+same reference measures progressive refinement (--methods southwell), hemicube form factors (hemicube) and bakes without the final gather
 (--without gather). An unknown method is
 refused with exit code 2 and leaves no folder.
 
@@ -48,19 +48,20 @@ for r in rows:  # the bake's own estimate, for the hierarchical methods (report.
 # --reference reuses the first sweep's reference (the same points, to the byte) and refuses one
 # traced with other settings.
 again = os.path.join(work, "again.sweep")
-subprocess.run([walkrad, "sweep", scene, "-o", again, "-q", "--reference", out, "--methods", "importance,southwell", "--errors", "1",
+subprocess.run([walkrad, "sweep", scene, "-o", again, "-q", "--reference", out, "--methods", "importance,southwell,hemicube", "--errors", "1",
                 "--element-sizes", "0.12", "--without", "gather", "--points", "256", "--samples", "4096", "--image-width", "16",
                 "--image-samples", "256"], check=True, stdout=subprocess.DEVNULL)
 with open(os.path.join(out, "reference-points.csv"), "rb") as a, open(os.path.join(again, "reference-points.csv"), "rb") as b:
     if a.read() != b.read():
         failures.append("--reference: reference-points.csv differs from the sweep it reused")
 # The same sweep measures progressive refinement (southwell: the classic matrix shot instead of
-# gathered, so the same solution) and each hierarchical run without the final gather.
+# gathered, so the same solution), the classic method with hemicube form factors, and each
+# hierarchical run without the final gather.
 with open(os.path.join(again, "sweep.csv")) as f:
     again_rows = {(r["method"], r["error"] or r["element_size"]): r for r in csv.DictReader(f)}
 first = {(r["method"], r["error"] or r["element_size"]): r for r in rows}
-if sorted(m for m, _ in again_rows) != ["importance", "importance-no-gather", "southwell"]:
-    failures.append(f"--methods importance,southwell --without gather: runs {sorted(again_rows)}")
+if sorted(m for m, _ in again_rows) != ["hemicube", "importance", "importance-no-gather", "southwell"]:
+    failures.append(f"--methods importance,southwell,hemicube --without gather: runs {sorted(again_rows)}")
 else:
     sw = next(r for (m, _), r in again_rows.items() if m == "southwell")
     gs = next(r for (m, _), r in first.items() if m == "classic" and abs(float(r["element_size"]) - 0.12) < 1e-9)

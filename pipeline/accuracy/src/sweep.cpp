@@ -48,13 +48,14 @@ struct Run {
 std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
   std::vector<Run> runs;
   for (const std::string& method : s.methods) {
-    if (method == "classic" || method == "southwell") {
+    if (method == "classic" || method == "southwell" || method == "hemicube") {
       std::vector<double> sizes = s.element_sizes;
       if (sizes.empty())
         for (double d : {10.0, 15.0, 21.0, 30.0}) sizes.push_back(diagonal / d);
       for (double h : sizes)
         runs.push_back({method + "-" + number(h), method, NAN, h,
-                        {"--method", "classic", "--element-size", number(h), "--solver", method == "classic" ? "gauss-seidel" : "southwell"}});
+                        {"--method", "classic", "--element-size", number(h), "--solver", method == "southwell" ? "southwell" : "gauss-seidel",
+                         "--form-factors", method == "hemicube" ? "hemicube" : "contour"}});
     } else if (method == "hierarchical" || method == "importance") {
       for (double e : s.errors) {
         Run r{method + "-" + number(e), method, e, NAN, {"--method", "hierarchical", "--error", number(e)}};
@@ -71,7 +72,7 @@ std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
         }
       }
     } else {
-      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, southwell, hierarchical, importance)",
+      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, southwell, hemicube, hierarchical, importance)",
                        kExitBadArguments);
     }
   }

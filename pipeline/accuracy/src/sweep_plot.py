@@ -17,9 +17,11 @@ doc = json.load(open(os.path.join(folder, "sweep.json")))
 runs = doc["runs"]
 ref = doc["reference"]
 LABELS = {"classic": "classic (element size)", "southwell": "classic, progressive refinement (element size)",
+          "hemicube": "classic, hemicube form factors (element size)",
           "hierarchical": "hierarchical, view-independent (requested error)",
           "importance": "hierarchical, importance-driven (requested error)"}
-STYLE = {"classic": ("tab:gray", "s"), "southwell": ("tab:brown", "D"), "hierarchical": ("tab:blue", "o"),
+STYLE = {"classic": ("tab:gray", "s"), "southwell": ("tab:brown", "D"), "hemicube": ("tab:olive", "P"),
+         "hierarchical": ("tab:blue", "o"),
          "importance": ("tab:red", "^")}
 # Variants without an effect (sweep --without): "importance-no-gather" and the like, dashed.
 methods = []
@@ -30,7 +32,7 @@ for m in methods:
     base = m.split("-no-")[0]
     LABELS.setdefault(m, LABELS.get(base, base) + ", without " + m.split("-no-")[-1] if "-no-" in m else m)
     STYLE.setdefault(m, (STYLE.get(base, ("tab:purple", "v"))[0], "x"))
-CLASSIC = ("classic", "southwell")  # by element size, not requested error
+CLASSIC = ("classic", "southwell", "hemicube")  # by element size, not requested error
 
 
 def of(method):

@@ -39,6 +39,11 @@ int main(int argc, char** argv) {
                        "gauss-seidel (both methods), jacobi (hierarchical) or southwell (classic: progressive refinement, "
                        "shooting the most unshot power first)")
       ->check(CLI::IsMember({"gauss-seidel", "jacobi", "southwell"}))->capture_default_str();
+  bake_cmd->add_option("--form-factors", bs.form_factors,
+                       "classic: contour (contour formula × Embree rays) or hemicube (Cohen & Greenberg 1985, z-buffered)")
+      ->check(CLI::IsMember({"contour", "hemicube"}))->capture_default_str();
+  bake_cmd->add_option("--hemicube-resolution", bs.hemicube_resolution, "classic, hemicube: pixels on the top face's side")
+      ->check(CLI::Range(2, 4096))->capture_default_str();
   bake_cmd->add_flag("--view-independent", bs.view_independent,
                      "hierarchical: hold every surface to the error alike, not only what the viewpoints see");
   bake_cmd->add_option("--min-area", bs.min_area, "hierarchical: smallest element in m² (default: the median polygon's side / 128, squared)")
@@ -117,7 +122,8 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--views", ss.views, "walkthrough JSON (default: the scene's cameras)");
   sweep_cmd->add_option("-o,--output", ss.output, "output folder (default: <scene name>.sweep)");
   sweep_cmd->add_option("--methods", ss.methods,
-                        "classic (Gauss-Seidel), southwell (classic, progressive refinement), hierarchical (view-independent), importance")
+                        "classic (Gauss-Seidel), southwell (classic, progressive refinement), hemicube (classic, hemicube form "
+                        "factors), hierarchical (view-independent), importance")
       ->delimiter(',')->capture_default_str();
   sweep_cmd->add_option("--without", ss.without,
                         "also bake each hierarchical run with this effect off (e.g. gather): what the effect buys")->delimiter(',');

@@ -72,7 +72,8 @@ void write_json(const std::string& path, const json& j) {
 
 json BakeSettings::to_json() const {
   return {{"method", method},     {"solver", solver},       {"error", error},     {"view_independent", view_independent},     {"min_area", min_area},
-          {"element_size", element_size}, {"rays", rays_per_point}, {"exposure", exposure},
+          {"element_size", element_size}, {"form_factors", form_factors}, {"hemicube_resolution", hemicube_resolution},
+          {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
           {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
           {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
@@ -95,6 +96,9 @@ BakeSummary bake(const BakeSettings& s) {
     throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
   if (s.solver == "southwell" && s.method != "classic")
     throw InputError("--solver", s.solver, "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
+                     kExitBadArguments);
+  if (s.form_factors == "hemicube" && s.method != "classic")
+    throw InputError("--form-factors", s.form_factors, "the hemicube computes the classic method's matrix (use --method classic)",
                      kExitBadArguments);
   if (s.solver == "jacobi" && s.method == "classic")
     throw InputError("--solver", s.solver, "the classic method solves by Gauss-Seidel or southwell", kExitBadArguments);

@@ -46,6 +46,7 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   FormFactorSettings ffs;
   ffs.rays_per_point = std::max(1, s.rays_per_point);
   ffs.visibility = plan.visibility.on;
+  if (s.form_factors == "hemicube") ffs.hemicube = s.hemicube_resolution;
   FormFactorCounts counts;
   FormFactorMatrix f;
   {
@@ -116,7 +117,7 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
               {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations},
               {"corrections", stats.corrections}, {"light_rays", light_rays}};
-  r.solver = {{"element_size", element_size}, {"iteration", s.solver == "southwell" ? "southwell" : "gauss-seidel"},
+  r.solver = {{"element_size", element_size}, {"form_factors", s.form_factors}, {"iteration", s.solver == "southwell" ? "southwell" : "gauss-seidel"},
               {"converged", stats.converged}, {"last_update", stats.last_update}, {"tolerance", s.tolerance}};
   if (s.solver == "southwell") {
     r.counts["shots"] = shooting.shots;

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "walkrad/formfactor/form_factor.h"
+#include "walkrad/formfactor/hemicube.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/visibility/shaft.h"
 #include "walkrad/core/rounding.h"
@@ -173,9 +174,26 @@ FormFactorMatrix compute_form_factors(const Subdivision& sub, const RayScene* ra
   const size_t n = sub.elements.size();
   std::vector<Row> rows(n);
   std::atomic<size_t> done{0};
+  std::vector<Polygon> shapes;
+  if (settings.hemicube > 0)
+    for (const Element& e : sub.elements) shapes.push_back(e.shape);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16), [&](const tbb::blocked_range<size_t>& r) {
     RowComputer computer(sub, rays, tree, settings);
-    for (size_t i = r.begin(); i != r.end(); ++i) rows[i] = computer.compute(uint32_t(i));
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      if (settings.hemicube > 0) {
+        // From the centroid, every element at once; its own plane's elements are edge-on (0).
+        const Element& e = sub.elements[i];
+        const std::vector<double> f = hemicube_form_factors(e.centroid, e.normal, shapes, settings.hemicube);
+        for (uint32_t j = 0; j < n; ++j)
+          if (j != i && f[j] > 0) {
+            rows[i].column.push_back(j);
+            rows[i].value.push_back(f[j]);
+          }
+        rows[i].pairs = rows[i].column.size();
+        continue;
+      }
+      rows[i] = computer.compute(uint32_t(i));
+    }
     const size_t d = done += r.size();
     if (progress) progress(d);
   });

@@ -20,6 +20,8 @@ struct BakeSettings {
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
+  std::string form_factors = "contour";  // classic: "contour" (× rays) or "hemicube"
+  int hemicube_resolution = 256;         // classic, hemicube: pixels on the top face's side
   std::string solver = "gauss-seidel";  // "gauss-seidel" (hierarchical: by input polygon), "jacobi" (hierarchical)
                                         // or "southwell" (classic: progressive refinement, southwell.h)
   // hierarchical: the relative error each surface may show (where the walkthrough looks, with

@@ -30,6 +30,10 @@ struct FormFactorMatrix {
 struct FormFactorSettings {
   int rays_per_point = 1;      // visibility rays from each receiver quadrature point
   bool visibility = true;      // false: unoccluded form factors (no rays)
+  // > 0: the hemicube instead (Cohen & Greenberg 1985; hemicube.h) at each element's centroid, this
+  // many pixels on its top face's side: F_ij from the point, visibility from its z-buffer over every
+  // element (the classic method as the 1980s ran it, for comparison in walkrad sweep).
+  int hemicube = 0;
   // When set, every visibility segment cast is appended here in row order (bench/ replays them).
   std::vector<RayScene::Segment>* record = nullptr;
 };
@@ -43,6 +47,7 @@ struct FormFactorCounts {
 
 // rays: null for unoccluded form factors. tree: the cluster tree over the same scene's polygons, for
 // shaft culling; null casts rays for every pair. progress(rows_done) is called from worker threads.
+// With settings.hemicube, rays and tree are unused (counts.rays stays 0).
 FormFactorMatrix compute_form_factors(const Subdivision& sub, const RayScene* rays, const ClusterTree* tree,
                                       const FormFactorSettings& settings, FormFactorCounts& counts,
                                       const std::function<void(size_t)>& progress = {});
