@@ -149,9 +149,11 @@ Vec3 DirectGather::at(const Vec3& x, const Vec3& n, const Vec3& inward, const Em
 
 namespace {
 
-// Whether leaf's ρD departs from its Gouraud interpolation by more than tol at an edge midpoint or the
-// centre (a quad's centre lies on the diagonal v0–v2 its two triangles share).
-bool interpolation_off(const Hierarchy& h, const DirectGather& g, uint32_t leaf, double tol, uint64_t& rays) {
+// How far leaf's ρD departs from its Gouraud interpolation (luminance): the largest difference at an
+// edge's quarter, half and three-quarter points and at the centre (a quad's centre lies on the
+// diagonal v0–v2 its two triangles share). The quarters catch a penumbra that a leaf straddles
+// symmetrically: at its midpoint the light is half on, as the corners' mean says.
+double interpolation_error(const Hierarchy& h, const DirectGather& g, uint32_t leaf, uint64_t& rays) {
   const HNode& n = h[leaf];
   const EmitterRanges from = g.candidates(leaf);
   const Vec3 c = polygon_centroid(n.shape);
@@ -163,14 +165,16 @@ bool interpolation_off(const Hierarchy& h, const DirectGather& g, uint32_t leaf,
   };
   std::array<double, 4> corner{};
   for (int k = 0; k < n.shape.count; ++k) corner[size_t(k)] = shade(n.shape.v[size_t(k)]);
+  double worst = 0;
   for (int k = 0; k < n.shape.count; ++k) {
     const int m = (k + 1) % n.shape.count;
-    const double mid = shade((n.shape.v[size_t(k)] + n.shape.v[size_t(m)]) * 0.5);
-    if (std::fabs(mid - 0.5 * (corner[size_t(k)] + corner[size_t(m)])) > tol) return true;
+    for (const double t : {0.25, 0.5, 0.75}) {
+      const double along = shade(n.shape.v[size_t(k)] * (1 - t) + n.shape.v[size_t(m)] * t);
+      worst = std::max(worst, std::fabs(along - ((1 - t) * corner[size_t(k)] + t * corner[size_t(m)])));
+    }
   }
-  const double centre = shade(c);
   const double interpolated = n.shape.count == 4 ? 0.5 * (corner[0] + corner[2]) : (corner[0] + corner[1] + corner[2]) / 3.0;
-  return std::fabs(centre - interpolated) > tol;
+  return std::max(worst, std::fabs(shade(c) - interpolated));
 }
 
 }  // namespace
@@ -188,20 +192,25 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
   uint64_t splits = 0;
   std::atomic<uint64_t> rays{0};
   while (!frontier.empty() && splits * 4 < r.budget) {
-    std::vector<uint8_t> split(frontier.size(), 0);
+    // Each leaf's interpolation error over its tolerance; the worst split first while the budget lasts.
+    std::vector<double> excess(frontier.size(), 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, frontier.size(), 16), [&](const tbb::blocked_range<size_t>& range) {
       uint64_t cast = 0;
       for (size_t k = range.begin(); k != range.end(); ++k) {
         const HNode& n = h[frontier[k]];
         if (n.depth >= r.max_depth || n.area * 0.25 < r.min_area) continue;
         const double shown = std::clamp(luminance(n.B), 0.1 * r.white, r.white);
-        split[k] = interpolation_off(h, g, frontier[k], kInterpolationShare * r.error * shown, cast);
+        excess[k] = interpolation_error(h, g, frontier[k], cast) / (kInterpolationShare * r.error * shown);
       }
       rays += cast;
     });
+    std::vector<size_t> order;
+    for (size_t k = 0; k < frontier.size(); ++k)
+      if (excess[k] > 1) order.push_back(k);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return excess[a] > excess[b]; });
     std::vector<uint32_t> next;
-    for (size_t k = 0; k < frontier.size() && splits * 4 < r.budget; ++k) {
-      if (!split[k]) continue;
+    for (const size_t k : order) {
+      if (splits * 4 >= r.budget) break;
       const uint32_t i = frontier[k];
       h.subdivide(i);
       ++splits;
@@ -218,6 +227,7 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
         next.push_back(child);
       }
     }
+    std::sort(next.begin(), next.end());
     frontier = std::move(next);
   }
   rays_cast += rays;

@@ -76,7 +76,6 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
   quadrants_ = split_element(n.shape);
   H_.fill(clusters.H(n.polygon, false));
   Hg_.fill(clusters.H(n.polygon, true));
-  Hf_ = H_;
   row_.fill(clusters.row(n.polygon));
   rowg_ = row_;
   uint32_t below = leaf;  // the child of a on the way to the leaf: the element chain only
@@ -103,7 +102,6 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
           row_[q] += f;
         }
         if (!point_form) {
-          Hf_[q] += sent * f;
           Hg_[q] += reflected * f;
           rowg_[q] += f;
         }
@@ -116,7 +114,7 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   const HNode& n = h_[leaf_];
   if (flat_) return n.B;
   const uint32_t q = quadrant_of(quadrants_, n.normal, x);
-  Vec3 H = gathered ? Hf_[q] : H_[q], Hg = Hg_[q];
+  Vec3 H = gathered ? Hg_[q] : H_[q];
   double row = gathered ? rowg_[q] : row_[q];
   for (const Near& s : near_) {
     if (!gathered && !s.close) continue;
@@ -132,19 +130,14 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
     } else if (dot(x - src.shape.v[0], src.normal) > 0) {
       f = point_to_polygon(x, n.normal, src.shape) * s.visible;
     }
-    H += clusters_.sent(s.source, false) * f;
-    if (gathered) Hg += clusters_.sent(s.source, true) * f;
+    H += clusters_.sent(s.source, gathered) * f;
     row += f;
   }
-  // Gathered: the links' direct light H − Hg leaves for the gather's exact D. What the leaf's receive
-  // factor adds (a closed scene's rows scaled to 1: the part of the hemisphere its links miss, filled
-  // at the mean of what they see) stays as the solve has it; a factor below 1 (a coincident row
-  // clamped) scales the reflected part only.
-  if (gathered) {
-    // c: the leaf's factor on what it gathers (its receive factor, or the clamp of a coincident row).
-    const double c = leaf_irradiance(n, Vec3(1, 1, 1), row).x;
-    return n.emission + mul(n.rho, Hg * c + (H - Hg) * std::max(0.0, c - 1.0));
-  }
+  // Gathered: the links' direct light is left for the gather's exact D. The leaf's receive factor (a
+  // closed scene's rows scaled to 1: the part of the hemisphere its links miss, filled at the mean of
+  // what they see) scales the reflected light alone: the emitters' links are not what the links miss
+  // (office-floor's direct-only bake: the gather agrees with the unscaled links to 0.1%).
+  if (gathered) return n.emission + mul(n.rho, leaf_irradiance(n, H, row));
   uint64_t rays = 0;
   const Vec3 D = clusters_.lights() ? point_irradiance(x, n.normal, *clusters_.lights(), clusters_.rays(), rays) : n.D;
   return n.emission + mul(n.rho, leaf_irradiance(n, H, row) + D);

@@ -71,8 +71,8 @@ class LeafRadiosity {
   uint32_t leaf_;
   bool flat_;
   std::array<Polygon, 4> quadrants_;
-  std::array<Vec3, 4> H_{};       // by the shares: every source but those near
-  std::array<Vec3, 4> Hf_{}, Hg_{};  // gathered: every source not taken at the point; all, reflected only
+  std::array<Vec3, 4> H_{};   // by the shares: every source but those near
+  std::array<Vec3, 4> Hg_{};  // gathered: what the sources not taken at the point reflect
   std::array<double, 4> row_{}, rowg_{};
   std::vector<Near> near_;
 };
