@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
-
 #include <atomic>
+#include <cmath>
+#include <cstring>
+#include <iterator>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

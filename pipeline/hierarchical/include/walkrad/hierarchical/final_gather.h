@@ -63,12 +63,13 @@ class DirectGather {
   std::vector<EmitterRanges> cluster_ranges_;  // per node (clusters only): its links' and its ancestors'
 };
 
-// The adaptive output mesh: a gathered leaf whose reflected direct light ρD, evaluated at its corners,
-// edge midpoints and centre, departs from what Gouraud shading interpolates between its corners by more
-// than `tolerance(leaf)` (a shadow edge the solution's elements do not follow) is split in four, and its
-// children are tested again, level by level, while the new leaves stay within `budget`. The children
-// take their parent's solution (B, factors): they have no links of their own, so the gather at their
-// vertices uses their parent's (point_radiosity.h). In a fixed order: deterministic. Returns the splits.
+// The adaptive output mesh: a gathered leaf whose reflected direct light ρD, evaluated at its edges'
+// quarter, half and three-quarter points and its centre, departs from what Gouraud shading interpolates
+// between its corners by more than a quarter of its tolerance (e × what it shows: a shadow edge the
+// solution's elements do not follow) is split in four, the worst first, and its children are tested
+// again, level by level, while the new leaves stay within `budget`. The children take their parent's
+// solution (B, factors): they have no links of their own, so the gather at their vertices uses their
+// parent's (point_radiosity.h). In a fixed order: deterministic. Returns the splits.
 struct GatherRefinement {
   const std::vector<uint8_t>* seen = nullptr;   // per input polygon, 1: gathered (null: all)
   const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none) are not gathered
