@@ -1,7 +1,12 @@
 #include "walkrad/hierarchical/link_transport.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "walkrad/hierarchical/directional_irradiance.h"
 
@@ -48,54 +53,99 @@ std::vector<double> path_sums(const Hierarchy& h, const std::vector<double>& per
 // What reaches every element along its ancestors' links, as the solve pushes it (solve_sweep.cpp):
 // a cluster's transfers by direction (directional_irradiance.h), taken by the first element below it
 // by its normal; an element's split among its children by their shares (Link::share); a leaf element
-// adds its own links'. H: Σ F · value(source); row: Σ F. Parents come first in the node array.
+// adds its own links'. H: Σ F · value(source), for N quantities at once (value returns N of them:
+// one walk over the links for all; each sum in the order a single one would take); row: Σ F.
+// Parents come first in the node array.
+template <size_t N>
 struct Delivery {
-  std::vector<Vec3> H;
+  std::vector<std::array<Vec3, N>> H;
   std::vector<double> row;
 };
 
-template <class V>
-Delivery delivered(const Hierarchy& h, V value) {
+template <size_t N, class V>
+Delivery<N> delivered(const Hierarchy& h, V value) {
   const std::vector<HNode>& nodes = h.nodes();
   size_t clusters = 0;
   for (size_t k = 0; k < nodes.size(); ++k)
     if (nodes[k].cluster) clusters = k + 1;
-  std::vector<DirectionalIrradiance> cube(clusters);
-  Delivery d{std::vector<Vec3>(nodes.size()), std::vector<double>(nodes.size(), 0.0)};
-  for (size_t k = 0; k < nodes.size(); ++k) {
+  std::vector<std::array<DirectionalIrradiance, N>> cube(clusters);
+  Delivery<N> d{std::vector<std::array<Vec3, N>>(nodes.size()), std::vector<double>(nodes.size(), 0.0)};
+  for (size_t k = 0; k < clusters; ++k) {  // the clusters, parents first
+    const HNode& n = nodes[k];
+    if (!n.cluster) continue;
+    if (n.parent >= 0) cube[k] = cube[size_t(n.parent)];
+    for (const Link& l : n.links) {
+      const Vec3 u = link_direction(n, h[l.source]);
+      const std::array<Vec3, N> v = value(l.source);
+      for (size_t m = 0; m < N; ++m) cube[k][m].add(n, u, l.F, v[m]);
+    }
+  }
+  // Each input polygon's element tree depends only on the clusters above it: the trees in parallel,
+  // each node after its parent, every sum in the same order whatever the threads.
+  auto element = [&](uint32_t k) {
     const HNode& n = nodes[k];
     const int32_t parent = n.parent;
-    if (n.cluster) {
-      if (parent >= 0) cube[k] = cube[size_t(parent)];
-      for (const Link& l : n.links) cube[k].add(n, link_direction(n, h[l.source]), l.F, value(l.source));
-      continue;
-    }
-    Vec3 H;
+    std::array<Vec3, N> H{};
     double row = 0;
     if (parent >= 0 && nodes[size_t(parent)].cluster) {
-      H = cube[size_t(parent)].at(n.normal);
-      row = cube[size_t(parent)].row(n.normal);
+      for (size_t m = 0; m < N; ++m) H[m] = cube[size_t(parent)][m].at(n.normal);
+      row = cube[size_t(parent)][0].row(n.normal);
     } else if (parent >= 0) {
       const HNode& p = nodes[size_t(parent)];
-      const uint32_t slot = child_slot(h, uint32_t(k));
+      const uint32_t slot = child_slot(h, k);
       H = d.H[size_t(parent)];
       row = d.row[size_t(parent)];
       if (slot < 4)
         for (const Link& l : p.links) {
           const double f = l.F * double(l.share[slot]);
-          H += value(l.source) * f;
+          const std::array<Vec3, N> v = value(l.source);
+          for (size_t m = 0; m < N; ++m) H[m] += v[m] * f;
           row += f;
         }
     }
     if (n.child_count == 0)
       for (const Link& l : n.links) {
-        H += value(l.source) * l.F;
+        const std::array<Vec3, N> v = value(l.source);
+        for (size_t m = 0; m < N; ++m) H[m] += v[m] * l.F;
         row += l.F;
       }
     d.H[k] = H;
     d.row[k] = row;
-  }
+  };
+  const size_t polygons = h.scene().polygons.size();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, polygons, 16), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<uint32_t> stack;
+    for (size_t p = r.begin(); p != r.end(); ++p) {
+      stack.assign(1, h.polygon_root(uint32_t(p)));
+      while (!stack.empty()) {
+        const uint32_t k = stack.back();
+        stack.pop_back();
+        element(k);
+        for (uint32_t c = 0; c < nodes[k].child_count; ++c) stack.push_back(h.child(nodes[k], c));
+      }
+    }
+  });
   return d;
+}
+
+// T x for N vectors x at once (apply_transport).
+template <size_t N>
+std::array<std::vector<Vec3>, N> transport(const Hierarchy& h, const std::array<const std::vector<Vec3>*, N>& x) {
+  const std::vector<HNode>& nodes = h.nodes();
+  std::array<std::vector<Vec3>, N> sent;
+  for (size_t m = 0; m < N; ++m) area_means(h, sent[m], [&](const HNode& n, size_t k) { return (*x[m])[k] * n.send; });
+  const Delivery<N> d = delivered<N>(h, [&](uint32_t source) {
+    std::array<Vec3, N> v;
+    for (size_t m = 0; m < N; ++m) v[m] = sent[m][source];
+    return v;
+  });
+  std::array<std::vector<Vec3>, N> out;
+  for (size_t m = 0; m < N; ++m) {
+    out[m].assign(nodes.size(), Vec3{});
+    for (size_t k = 0; k < nodes.size(); ++k)
+      if (is_leaf_element(nodes[k])) out[m][k] = leaf_irradiance(nodes[k], d.H[k][m], d.row[k]);
+  }
+  return out;
 }
 
 // Row sums of every leaf, Σ F s̄ along its path as the solve pushes it, with send factors send(node).
@@ -103,9 +153,11 @@ template <class F>
 std::vector<double> row_sums(const Hierarchy& h, F send) {
   std::vector<double> mean;
   area_means(h, mean, [&](const HNode& n, size_t) { return send(n); });
-  const Delivery d = delivered(h, [&](uint32_t source) { return Vec3(mean[source], mean[source], mean[source]); });
+  const Delivery<1> d = delivered<1>(h, [&](uint32_t source) {
+    return std::array<Vec3, 1>{Vec3(mean[source], mean[source], mean[source])};
+  });
   std::vector<double> out(d.H.size());
-  for (size_t k = 0; k < out.size(); ++k) out[k] = d.H[k].x;
+  for (size_t k = 0; k < out.size(); ++k) out[k] = d.H[k][0].x;
   return out;
 }
 
@@ -169,14 +221,7 @@ Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* cla
 }
 
 std::vector<Vec3> apply_transport(const Hierarchy& h, const std::vector<Vec3>& x) {
-  const std::vector<HNode>& nodes = h.nodes();
-  std::vector<Vec3> sent;
-  area_means(h, sent, [&](const HNode& n, size_t k) { return x[k] * n.send; });
-  const Delivery d = delivered(h, [&](uint32_t source) { return sent[source]; });
-  std::vector<Vec3> out(nodes.size());
-  for (size_t k = 0; k < nodes.size(); ++k)
-    if (is_leaf_element(nodes[k])) out[k] = leaf_irradiance(nodes[k], d.H[k], d.row[k]);
-  return out;
+  return std::move(transport<1>(h, {&x})[0]);
 }
 
 void pull_up_radiosity(Hierarchy& h) {
@@ -263,7 +308,9 @@ double aggregation_correction(Hierarchy& h, double floor) {
       b[k] = nodes[k].B;
       v[k] = nodes[k].B - nodes[k].emission - mul(nodes[k].rho, nodes[k].D);
     }
-  const std::vector<Vec3> tb = apply_transport(h, b), tv = apply_transport(h, v);
+  const std::array<std::vector<Vec3>, 2> t = transport<2>(h, {&b, &v});  // one walk over the links for both
+  const std::vector<Vec3>& tb = t[0];
+  const std::vector<Vec3>& tv = t[1];
   Vec3 num, den, total;
   for (size_t k = 0; k < nodes.size(); ++k) {  // sequential: a fixed order of sums
     const HNode& n = nodes[k];
