@@ -81,47 +81,50 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
     }
   }
   // Each input polygon's element tree depends only on the clusters above it: the trees in parallel,
-  // each node after its parent, every sum in the same order whatever the threads.
-  auto element = [&](uint32_t k) {
-    const HNode& n = nodes[k];
-    const int32_t parent = n.parent;
-    std::array<Vec3, N> H{};
-    double row = 0;
-    if (parent >= 0 && nodes[size_t(parent)].cluster) {
-      for (size_t m = 0; m < N; ++m) H[m] = cube[size_t(parent)][m].at(n.normal);
-      row = cube[size_t(parent)][0].row(n.normal);
-    } else if (parent >= 0) {
-      const HNode& p = nodes[size_t(parent)];
-      const uint32_t slot = child_slot(h, k);
-      H = d.H[size_t(parent)];
-      row = d.row[size_t(parent)];
-      if (slot < 4)
-        for (const Link& l : p.links) {
-          const double f = l.F * double(l.share[slot]);
-          const std::array<Vec3, N> v = value(l.source);
-          for (size_t m = 0; m < N; ++m) H[m] += v[m] * f;
-          row += f;
-        }
-    }
-    if (n.child_count == 0)
-      for (const Link& l : n.links) {
-        const std::array<Vec3, N> v = value(l.source);
-        for (size_t m = 0; m < N; ++m) H[m] += v[m] * l.F;
-        row += l.F;
-      }
-    d.H[k] = H;
-    d.row[k] = row;
+  // each node after its parent. A parent's links are walked once for its four children (each child's
+  // sum takes them in the same order as a walk per child would: the same bits).
+  struct Item {
+    uint32_t node;
+    std::array<Vec3, N> H;
+    double row;
   };
   const size_t polygons = h.scene().polygons.size();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, polygons, 16), [&](const tbb::blocked_range<size_t>& r) {
-    std::vector<uint32_t> stack;
+    std::vector<Item> stack;
     for (size_t p = r.begin(); p != r.end(); ++p) {
-      stack.assign(1, h.polygon_root(uint32_t(p)));
+      const uint32_t root = h.polygon_root(uint32_t(p));
+      const HNode& top = nodes[root];
+      Item first{root, {}, 0.0};
+      if (top.parent >= 0 && nodes[size_t(top.parent)].cluster) {
+        for (size_t m = 0; m < N; ++m) first.H[m] = cube[size_t(top.parent)][m].at(top.normal);
+        first.row = cube[size_t(top.parent)][0].row(top.normal);
+      }
+      stack.assign(1, first);
       while (!stack.empty()) {
-        const uint32_t k = stack.back();
+        Item it = stack.back();
         stack.pop_back();
-        element(k);
-        for (uint32_t c = 0; c < nodes[k].child_count; ++c) stack.push_back(h.child(nodes[k], c));
+        const HNode& n = nodes[it.node];
+        if (n.child_count == 0)
+          for (const Link& l : n.links) {
+            const std::array<Vec3, N> v = value(l.source);
+            for (size_t m = 0; m < N; ++m) it.H[m] += v[m] * l.F;
+            it.row += l.F;
+          }
+        d.H[it.node] = it.H;
+        d.row[it.node] = it.row;
+        if (n.child_count == 0) continue;
+        const uint32_t kids = std::min<uint32_t>(n.child_count, 4);
+        std::array<Item, 4> child;
+        for (uint32_t c = 0; c < kids; ++c) child[c] = {h.child(n, c), it.H, it.row};
+        for (const Link& l : n.links) {
+          const std::array<Vec3, N> v = value(l.source);
+          for (uint32_t c = 0; c < kids; ++c) {
+            const double f = l.F * double(l.share[c]);
+            for (size_t m = 0; m < N; ++m) child[c].H[m] += v[m] * f;
+            child[c].row += f;
+          }
+        }
+        for (uint32_t c = 0; c < kids; ++c) stack.push_back(child[c]);
       }
     }
   });
