@@ -43,6 +43,21 @@ Vec3 cosine_direction(const Vec3& n, double u1, double u2) {
 // Veach's power heuristic (β = 2) for one sample of technique f against technique g (pdfs in solid angle).
 double power_heuristic(double f, double g) { return f * f / (f * f + g * g); }
 
+// A punctual light's intensity towards unit direction `out` (from the light) at distance r, written
+// from the KHR_lights_punctual text (not from the solvers' punctual_lights.h): a spot's angular
+// attenuation is clamp(cd · scale + offset, 0, 1)², scale = 1 / max(0.001, cos inner − cos outer),
+// offset = −cos outer · scale, cd the cosine to its axis; the range's window clamp(1 − (r/range)⁴, 0, 1).
+Vec3 punctual_intensity(const PunctualLight& l, const Vec3& out, double r) {
+  double k = 1.0;
+  if (l.type == PunctualLight::Type::spot) {
+    const double scale = 1.0 / std::max(0.001, std::cos(l.inner_cone) - std::cos(l.outer_cone));
+    const double a = std::clamp(dot(l.direction, out) * scale - std::cos(l.outer_cone) * scale, 0.0, 1.0);
+    k = a * a;
+  }
+  if (l.range > 0) k *= std::clamp(1.0 - std::pow(r / l.range, 4.0), 0.0, 1.0);
+  return l.intensity * k;
+}
+
 }  // namespace
 
 ReferenceTracer::ReferenceTracer(const Scene& scene, const RayScene& rays) : scene_(scene), rays_(rays) {
@@ -92,6 +107,46 @@ Vec3 ReferenceTracer::direct(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& r
          (cx / (kPi * light_pdf) * power_heuristic(light_pdf, cx / kPi));
 }
 
+// What leaves a surface on the side of normal n is ρ × the irradiance on that side, plus, for a material
+// that transmits (diffusely: MGF td, glTF diffuse transmission), τ × the irradiance on the other: one
+// of the two chosen by their luminance, the path's weight divided by the choice's probability. A
+// material that does not transmit draws no number: its paths are what they were.
+void ReferenceTracer::scatter(const Material& m, Vec3& n, Vec3& beta, Rng& rng) const {
+  if (!m.transmits()) {
+    beta = mul(beta, m.reflectance);
+    return;
+  }
+  const double r = luminance(m.reflectance), t = luminance(m.transmittance);
+  const double p = r + t > 0 ? r / (r + t) : 0.5;
+  if (rng.uniform() < p) {
+    beta = mul(beta, m.reflectance) / p;
+  } else {
+    beta = mul(beta, m.transmittance) / (1 - p);
+    n = n * -1.0;
+  }
+}
+
+// The irradiance the punctual lights give x (normal n): I cos θ / r² each, a shadow ray each. No sampling:
+// a point light is a delta in direction, which no cosine-weighted ray can meet.
+Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, uint64_t& rays) const {
+  Vec3 E;
+  const double off = rays_.offset();
+  for (const PunctualLight& l : scene_.lights) {
+    const Vec3 d = l.position - x;
+    const double r2 = dot(d, d);
+    if (!(r2 > 0)) continue;
+    const double r = std::sqrt(r2);
+    const double c = dot(n, d) / r;
+    if (c <= 0) continue;
+    const Vec3 I = punctual_intensity(l, d * (-1.0 / r), r);
+    if (max_component(I) <= 0) continue;
+    ++rays;
+    if (rays_.occluded(x + n * off, l.position)) continue;
+    E += I * (c / r2);
+  }
+  return E;
+}
+
 double ReferenceTracer::light_pdf(uint32_t polygon, double r2, double cos_y) const {
   const int32_t k = emitter_index_[polygon];
   if (k < 0 || cos_y <= 0) return 0;
@@ -107,33 +162,36 @@ RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int sampl
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, lum = 0, lum2 = 0;
   for (int s = 0; s < samples; ++s) {
     Vec3 value = m0.emission;
-    Vec3 beta = m0.reflectance;  // multiplies the irradiance at the current point
+    Vec3 beta{1, 1, 1};  // multiplies the irradiance at the current point
     Vec3 x = point.position, n = normals_[point.polygon];
+    scatter(m0, n, beta, rng);
     for (int bounce = 0; bounce < kMaxBounces && max_component(beta) > 0; ++bounce) {
-      value += mul(beta, direct(x, n, rng, rays));
+      value += mul(beta, direct(x, n, rng, rays) + punctual(x, n, rays));
       const double u1 = rng.uniform(), u2 = rng.uniform();
       const Vec3 dir = cosine_direction(n, u1, u2);
       ++rays;
       const RayScene::Hit hit = rays_.intersect(x + n * off, dir);
       if (!hit.hit) break;
       const Vec3& nq = normals_[hit.polygon];
-      if (dot(nq, dir) >= 0) break;  // a back face: opaque and black
+      const Material& mq = scene_.materials[scene_.polygons[hit.polygon].material];
+      const bool back = dot(nq, dir) >= 0;
+      if (back && !mq.transmits()) break;  // a back face: opaque and black (a transmitting one has two sides)
       // The cosine-weighted estimate of H is B(y): its emitted part, weighted against next-event
       // estimation (which would have drawn y with light_pdf), then its reflected part, recursively.
-      const Material& mq = scene_.materials[scene_.polygons[hit.polygon].material];
-      if (mq.emits()) {
+      if (!back && mq.emits()) {
         const Vec3 d = hit.position - x;
         const double cos_x = dot(n, dir);
         value += mul(beta, mq.emission) * power_heuristic(cos_x / kPi, light_pdf(hit.polygon, dot(d, d), -dot(nq, dir)));
       }
-      beta = mul(beta, mq.reflectance);
+      Vec3 side = back ? nq * -1.0 : nq;  // the side the ray arrives on
+      scatter(mq, side, beta, rng);
       if (bounce >= 2) {
         const double survive = std::min(0.95, max_component(beta));
         if (rng.uniform() >= survive) break;
         beta = beta / survive;
       }
       x = hit.position;
-      n = nq;
+      n = side;
     }
     for (int c = 0; c < 3; ++c) {
       sum[c] += value[c];

@@ -2,6 +2,7 @@
 // every face emitting E and reflecting ρ: B = E / (1 − ρ)) and the direct light from a square emitter
 // onto a point below it (ρ E F, F the point-to-parallel-rectangle form factor), each within the
 // estimate's own 99.9% confidence interval; and the same estimates whatever the thread count.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -51,6 +52,28 @@ TEST_P(ReferenceFurnace, AgreesWithEOverOneMinusRhoWithinItsInterval) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Reflectances, ReferenceFurnace, ::testing::Values(0.5, 0.8));
+
+// The furnace with walls that also transmit (τ = 0.3): what they pass outwards meets nothing and never
+// comes back, and what leaves them inwards is still E + ρ × the inside's uniform irradiance, so B =
+// E / (1 − ρ) whatever τ. Paths that choose the outer side (by τ's share) must bring nothing back.
+TEST(ReferenceFurnace, TransmittingWallsKeepEOverOneMinusRho) {
+  const double rho = 0.5;
+  const Vec3 e(1.0, 2.0, 0.5);
+  Scene box = test::closed_box(2.0, {rho, rho, rho}, e);
+  box.materials[0].transmittance = {0.3, 0.3, 0.3};
+  const RayScene rays(box);
+  const ReferenceTracer tracer(box, rays);
+  ReferenceSettings s;
+  s.samples = 8192;
+  uint64_t cast = 0;
+  const std::vector<RadiosityEstimate> est = tracer.estimate(centroids(box), s, cast);
+  for (size_t k = 0; k < est.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double exact = e[c] / (1.0 - rho);
+      EXPECT_LT(est[k].standard_error[c], 0.03 * exact);
+      EXPECT_NEAR(est[k].B[c], exact, kSigmas * est[k].standard_error[c]) << "point " << k << " channel " << c;
+    }
+}
 
 // Two furnaces side by side whose shared wall is two coincident polygons back to back (a building's
 // zero-thickness wall): the lit box is still exactly E / (1 − ρ) and the dark one black. Were a ray
@@ -115,6 +138,50 @@ TEST(ReferenceDirect, PointBelowASquareLight) {
     const double exact = 0.5 * 10 * F;
     EXPECT_NEAR(est[k].B.x, exact, kSigmas * est[k].standard_error.x) << "point " << k << ", F = " << F;
     EXPECT_LT(est[k].standard_error.x, 0.02 * exact);
+  }
+}
+
+// Punctual lights over a lone floor (nothing else: every bounce escapes, so the estimate is exact):
+// B = ρ I cos θ / r², a spot's KHR_lights_punctual falloff between its cones and nothing outside.
+TEST(ReferencePunctual, PointAndSpotLightsOverAFloor) {
+  Scene s;
+  s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {}});
+  s.polygons.push_back(test::quad({-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0));
+  ASSERT_GT(polygon_normal(s.polygons[0]).y, 0);
+  PunctualLight bulb;
+  bulb.position = {0, 2, 0};
+  bulb.intensity = {8, 8, 8};
+  PunctualLight spot;
+  spot.type = PunctualLight::Type::spot;
+  spot.position = {10, 2, 0};
+  spot.direction = {0, -1, 0};
+  spot.intensity = {20, 20, 20};
+  spot.inner_cone = 0.3;
+  spot.outer_cone = 0.6;
+  s.lights = {bulb};
+  const RayScene rays(s);
+  ReferenceSettings settings;
+  settings.samples = 16;
+  uint64_t cast = 0;
+  {
+    const ReferenceTracer tracer(s, rays);
+    const std::vector<SurfacePoint> points = {{0, {0, 0, 0}}, {0, {1.5, 0, -1}}};
+    const std::vector<RadiosityEstimate> est = tracer.estimate(points, settings, cast);
+    for (size_t k = 0; k < points.size(); ++k) {
+      const Vec3 d = bulb.position - points[k].position;
+      const double r2 = dot(d, d);
+      EXPECT_NEAR(est[k].B.x, 0.5 * 8 * (d.y / std::sqrt(r2)) / r2, 1e-12) << "point " << k;
+    }
+  }
+  s.lights = {spot};
+  const ReferenceTracer tracer(s, rays);
+  // On the axis (full), at 0.45 rad off it (between the cones: a quarter-way ramp, squared), at 0.7 (dark).
+  for (const double angle : {0.0, 0.45, 0.7}) {
+    const Vec3 x(10 + 2 * std::tan(angle), 0, 0);
+    const std::vector<RadiosityEstimate> est = tracer.estimate(std::vector<SurfacePoint>{{0, x}}, settings, cast);
+    const double c = std::cos(angle), r2 = 4 + 4 * std::tan(angle) * std::tan(angle);
+    const double t = std::clamp((c - std::cos(0.6)) / (std::cos(0.3) - std::cos(0.6)), 0.0, 1.0);
+    EXPECT_NEAR(est[0].B.x, 0.5 * 20 * t * t * c / r2, 1e-12) << "at " << angle << " rad";
   }
 }
 

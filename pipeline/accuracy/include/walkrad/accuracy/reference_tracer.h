@@ -5,7 +5,8 @@
 // The rendering equation restricted to diffuse surfaces (Kajiya 1986; Dutré, Bekaert & Bala,
 // "Advanced Global Illumination", ch. 5): B(x) = E(x) + ρ(x)·H(x), with irradiance
 // H(x) = ∫ B(y)/π · cos θ dω over the hemisphere, B(y) the radiosity of the first front face seen
-// (back faces and escaping rays bring nothing, as in the solvers). Estimated per path:
+// (back faces and escaping rays bring nothing, as in the solvers; a material that transmits diffusely
+// has two sides, and what leaves one is ρ × its irradiance + τ × the other side's). Estimated per path:
 //  - next-event estimation: one point drawn uniformly on an emitter chosen by power, E(y)/π ·
 //    cos θx cos θy / r² / pdf(y), Embree shadow ray;
 //  - a cosine-weighted direction (pdf cos θ / π, so the estimate of H is B(y) itself): the emitted
@@ -13,6 +14,8 @@
 //  - the two estimates of emitted light combined by multiple importance sampling (Veach & Guibas
 //    1995, power heuristic): near an emitter's edge, where next-event estimation's 1/r² would give
 //    unbounded variance, the cosine-weighted sample takes over;
+//  - punctual lights (KHR_lights_punctual), which no ray can meet: at every path vertex, each light's
+//    I · falloff · cos θ / r² with a shadow ray, written from the extension's text;
 //  - Russian roulette after three bounces, survival = the path's throughput (≤ 0.95).
 // Every point draws from its own stream (Rng(seed, point)): results do not depend on the threads.
 #pragma once
@@ -58,6 +61,8 @@ class ReferenceTracer {
 
  private:
   Vec3 direct(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const;
+  Vec3 punctual(const Vec3& x, const Vec3& n, uint64_t& rays) const;
+  void scatter(const Material& m, Vec3& n, Vec3& beta, Rng& rng) const;
   // The solid-angle pdf with which next-event estimation draws a point of `polygon` at distance² r2.
   double light_pdf(uint32_t polygon, double r2, double cos_y) const;
 

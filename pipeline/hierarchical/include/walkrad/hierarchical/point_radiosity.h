@@ -54,7 +54,8 @@ class ClusterGather {
 // once, and the near element sources kept for the contour formula at each point.
 class LeafRadiosity {
  public:
-  // A leaf of a transmitting polygon (with a twin), or a cluster, keeps its mean B.
+  // A cluster keeps its mean B; a leaf of a transmitting polygon (with a twin) its mean B plus how the
+  // punctual lights' irradiance at the point departs from its mean on either side, times ρ and τ.
   LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting = false);
 
   // B at a point of the leaf; gathered: without direct light (the final gather adds it).
@@ -70,6 +71,9 @@ class LeafRadiosity {
   const Hierarchy& h_;
   uint32_t leaf_;
   bool flat_;
+  bool lit_sides_ = false;  // transmitting, with punctual lights: their variation on both sides
+  Vec3 tau_, D_front_, D_back_;
+  Polygon back_;
   std::array<Polygon, 4> quadrants_;
   std::array<Vec3, 4> H_{};   // by the shares: every source but those near
   std::array<Vec3, 4> Hg_{};  // gathered: what the sources not taken at the point reflect
