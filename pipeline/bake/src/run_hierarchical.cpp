@@ -92,7 +92,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   hs.closed = plan.closure.on;
   hs.closed_rows = plan.closed && !(plan.closure.forced && !plan.closure.on);  // closure=off: no scaling at all
   if (plan.punctual.on) hs.lights = &scene.lights;
-  // The final gather at the polygons the walkthrough sees (all of them without one).
+  // The final gather at the polygons the walkthrough sees (all of them when forced on without viewpoints).
   auto seen = std::make_shared<std::vector<uint8_t>>();
   hs.gather = plan.gather.on;
   if (plan.gather.on && !hits.empty()) {

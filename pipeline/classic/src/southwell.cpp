@@ -65,9 +65,8 @@ std::vector<Vec3> solve_southwell(const FormFactorMatrix& f, const std::vector<d
     }
     ++stats.shots;
   }
-  if (!stats.converged && emitted > 0 && left() <= settings.tolerance * emitted) stats.converged = true;
   stats.unshot = emitted > 0 ? left() / emitted : 0.0;
-  if (emitted <= 0) stats.converged = true;
+  stats.converged = stats.converged || stats.unshot <= settings.tolerance;
   Vec3 unshot_power;
   for (size_t j = 0; j < n; ++j) unshot_power += unshot[j] * area[j];
   for (int c = 0; c < 3; ++c)

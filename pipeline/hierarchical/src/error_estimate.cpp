@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "walkrad/core/rounding.h"
+#include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad::hierarchical_detail {
 
@@ -90,13 +91,8 @@ void Solver::measure_spread() {
     if (hi[i] >= lo[i]) spread_[i] = hi[i] - lo[i];
   emitted_.assign(n, 0.0f);
   if (!s_.gather) return;
-  std::vector<double> e(n, 0.0);
-  for (size_t i = n; i-- > 0;) {
-    const HNode& node = h_[uint32_t(i)];
-    if (node.child_count == 0 && !node.cluster) e[i] = luminance(node.emission) * (s_.indirect ? node.send : 1.0) * node.area;
-    if (node.parent >= 0) e[size_t(node.parent)] += e[i];
-    emitted_[i] = node.area > 0 ? float(e[i] / node.area) : 0.0f;
-  }
+  const std::vector<Vec3> emitted = emitted_as_sent(h_);
+  for (size_t i = 0; i < n; ++i) emitted_[i] = float(luminance(emitted[i]));
 }
 
 bool Solver::gathered(uint32_t i) const {
@@ -106,12 +102,12 @@ bool Solver::gathered(uint32_t i) const {
   return !s_.twins || (*s_.twins)[n.polygon] == kNoTwin;
 }
 
-double Solver::sent_to(uint32_t receiver, uint32_t source) const {
-  const double all = luminance(sent(h_[source]));
-  if (!gathered(receiver)) return all;
+double Solver::reflected_sent(uint32_t source) const {
+  if (!s_.indirect) return 0.0;  // sources send their emission alone
   // A node made this round: its parent's (an element's children share its emission).
   uint32_t j = source;
   while (j >= emitted_.size() && h_[j].parent >= 0) j = uint32_t(h_[j].parent);
+  const double all = luminance(sent(h_[source]));
   return j < emitted_.size() ? std::max(0.0, all - double(emitted_[j])) : all;
 }
 
@@ -126,9 +122,10 @@ void Solver::measure_variation() {
       if (n.links.empty() || kids < 2 || kids > 4) continue;
       // The refinement measures everything the links carry; the estimate, at a gathered receiver, only
       // what they still bring to its vertices (the gather evaluates the emitters' light there).
+      const bool gather = gathered(uint32_t(i));
       double H = 0, Hc[4] = {}, G = 0, Gc[4] = {};
       for (const Link& l : n.links) {
-        const double b = luminance(sent(h_[l.source])) * l.F, g = sent_to(uint32_t(i), l.source) * l.F;
+        const double b = luminance(sent(h_[l.source])) * l.F, g = gather ? reflected_sent(l.source) * l.F : b;
         H += b;
         G += g;
         for (uint32_t k = 0; k < kids; ++k) {
@@ -222,8 +219,10 @@ void Solver::measure_left_error() {
     // child (which the refinement tests), with the source's and the form factor's errors.
     double sq = double(left_[i]) * double(left_[i]);
     const double rho = luminance(n.rho);
+    const bool gather = gathered(i);
     for (const Link& l : n.links) {
-      const double source = source_error(n, l), noise = rho * sent_to(i, l.source) * l.sigma;
+      const double carried = gather ? reflected_sent(l.source) : luminance(sent(h_[l.source]));
+      const double source = source_error(n, l), noise = rho * carried * l.sigma;
       sq += source * source + noise * noise;
     }
     n.error = float(std::sqrt(sq));

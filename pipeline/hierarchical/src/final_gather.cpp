@@ -102,8 +102,8 @@ double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& 
                                       uint64_t& rays_cast) const {
   const double off = rays_->offset();
   Rng rng(point_seed(x), e.polygon);
-  double seen = 0, total = 0, flat_seen = 0;
-  int hits = 0, cast = 0;
+  double seen = 0, total = 0;
+  int arrived = 0, cast = 0;  // rays that arrive, rays cast
   std::array<RayScene::Segment, kSecond * kSecond> segments;
   std::array<double, kSecond * kSecond> kernel;
   std::array<uint8_t, kSecond * kSecond> blocked;
@@ -121,16 +121,14 @@ double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& 
     rays_->occluded(segments.data(), size_t(count), blocked.data());
     rays_cast += uint64_t(count);
     for (int k = 0; k < count; ++k) {
-      const bool open = !blocked[size_t(k)];
-      seen += open ? kernel[size_t(k)] : 0.0;
+      seen += blocked[size_t(k)] ? 0.0 : kernel[size_t(k)];
       total += kernel[size_t(k)];
-      flat_seen += open;
-      hits += open;
+      arrived += !blocked[size_t(k)];
     }
     cast += count;
-    if (m == kFirst && (hits == 0 || hits == count)) break;  // wholly lit or wholly hidden: no penumbra here
+    if (m == kFirst && (arrived == 0 || arrived == count)) break;  // wholly lit or wholly hidden: no penumbra here
   }
-  return total > 0 ? seen / total : flat_seen / cast;
+  return total > 0 ? seen / total : double(arrived) / cast;
 }
 
 Vec3 DirectGather::at(const Vec3& x, const Vec3& n, const Vec3& inward, const EmitterRanges& from, uint64_t& rays_cast) const {

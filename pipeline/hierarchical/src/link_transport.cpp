@@ -131,7 +131,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
   return d;
 }
 
-// T x for N vectors x at once (apply_transport).
+// T x for N vectors x at once, x given at the leaves (indexed by node): zero except at leaf elements.
 template <size_t N>
 std::array<std::vector<Vec3>, N> transport(const Hierarchy& h, const std::array<const std::vector<Vec3>*, N>& x) {
   const std::vector<HNode>& nodes = h.nodes();
@@ -223,8 +223,10 @@ Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* cla
   return H * leaf.receive;
 }
 
-std::vector<Vec3> apply_transport(const Hierarchy& h, const std::vector<Vec3>& x) {
-  return std::move(transport<1>(h, {&x})[0]);
+std::vector<Vec3> emitted_as_sent(const Hierarchy& h) {
+  std::vector<Vec3> mean;
+  area_means(h, mean, [](const HNode& n, size_t) { return n.emission * n.send; });
+  return mean;
 }
 
 void pull_up_radiosity(Hierarchy& h) {

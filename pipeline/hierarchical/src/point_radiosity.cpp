@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
@@ -28,17 +27,7 @@ constexpr double kFar = 4.0;
 ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vector<PunctualLight>* lights, const RayScene* rays)
     : h_(h), indirect_(indirect), lights_(lights && !lights->empty() ? lights : nullptr), rays_(rays),
       H_(h.scene().polygons.size()), Hg_(h.scene().polygons.size()), row_(h.scene().polygons.size(), 0.0),
-      emitted_(h.nodes().size()) {
-  for (size_t k = h.nodes().size(); k-- > 0;) {  // children first
-    const HNode& n = h[uint32_t(k)];
-    if (n.child_count == 0) {
-      emitted_[k] = n.cluster ? Vec3{} : n.emission * n.send;
-      continue;
-    }
-    Vec3 e;
-    for (uint32_t c = 0; c < n.child_count; ++c) e += emitted_[h.child(n, c)] * h[h.child(n, c)].area;
-    emitted_[k] = n.area > 0 ? e / n.area : Vec3{};
-  }
+      emitted_(emitted_as_sent(h)) {
   // Down the cluster tree, each cluster's links added to its parent's, by direction.
   std::vector<DirectionalIrradiance> cube, cube_g;
   std::vector<uint32_t> slot(h.nodes().size(), UINT32_MAX);
@@ -78,11 +67,11 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
     const HNode& n = h_[leaf];
     if (!transmitting || !clusters.lights()) return;
     tau_ = clusters.hierarchy().scene().materials[clusters.hierarchy().scene().polygons[n.polygon].material].transmittance;
-    back_ = n.shape;
-    std::reverse(back_.v.begin(), back_.v.begin() + back_.count);
+    Polygon back = n.shape;  // the twin's side: the same corners the other way round
+    std::reverse(back.v.begin(), back.v.begin() + back.count);
     uint64_t rays = 0;
     D_front_ = direct_irradiance(n.shape, *clusters.lights(), clusters.rays(), kLightPoints, rays).mean;
-    D_back_ = direct_irradiance(back_, *clusters.lights(), clusters.rays(), kLightPoints, rays).mean;
+    D_back_ = direct_irradiance(back, *clusters.lights(), clusters.rays(), kLightPoints, rays).mean;
     lit_sides_ = true;
     return;
   }

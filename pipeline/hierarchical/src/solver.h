@@ -97,8 +97,8 @@ class Solver {
   // gathered): its direct light from area emitters is evaluated at the vertices, not taken from links.
   bool gathered(uint32_t i) const;
   // The luminance of what a source sends that a gathered receiver takes from its links: sent less
-  // the source's own emission (as sent).
-  double sent_to(uint32_t receiver, uint32_t source) const;
+  // the source's own emission as sent (0 when sources send their emission alone).
+  double reflected_sent(uint32_t source) const;
 
   // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
   // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).

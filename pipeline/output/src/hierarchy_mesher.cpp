@@ -40,7 +40,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     direct = std::make_unique<DirectGather>(h, point.lights, point.rays);
     auto seen = [&](size_t face) {
       const uint32_t p = faces[face].polygon;
-      return (!point.seen || (*point.seen)[p]) && !transmitting(p) && !h[leaf[face]].cluster;
+      return (!point.seen || (*point.seen)[p]) && !transmitting(p);
     };
     candidates.resize(faces.size());
     tbb::parallel_for(size_t(0), faces.size(), [&](size_t f) {

@@ -60,9 +60,9 @@ struct HierarchicalSettings {
   // adds τ × what its twin receives at its centroid. No aggregation correction then. Not owned.
   const std::vector<uint32_t>* twins = nullptr;
   // The final gather (final_gather.h) evaluates the area emitters' direct light at the output vertices
-  // of these input polygons (1: gathered; null: all of them, when gather is on): there the links need
-  // carry only indirect light, and the refinement and the error estimate measure only what the
-  // sources reflect (error_estimate.cpp). Not owned.
+  // of these input polygons (1: gathered; null: all of them, when gather is on): there the links bring
+  // only what the sources reflect, and the error estimate measures only that; the refinement still
+  // measures everything the links carry (error_estimate.cpp). Not owned.
   bool gather = false;
   const std::vector<uint8_t>* gathered = nullptr;
   // Volumetric visibility through volume clusters (volume_visibility.h); null: exact rays only. Not owned.

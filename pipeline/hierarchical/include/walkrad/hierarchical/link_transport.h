@@ -35,9 +35,9 @@ inline bool is_leaf_element(const HNode& n) { return !n.cluster && n.child_count
 // times its receive factor, scaled back above kMaxRowSum. clamped: set when scaled back.
 Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* clamped = nullptr);
 
-// T x for x given at the leaves (indexed by node; other entries ignored). Result indexed by node,
-// zero except at leaf elements. Deterministic: sums in a fixed order.
-std::vector<Vec3> apply_transport(const Hierarchy& h, const std::vector<Vec3>& x);
+// Each node's area mean of its leaf elements' emission as they send it (E × send): the part of Bt that
+// is the sources' own emission, which the final gather takes at the vertices instead (final_gather.h).
+std::vector<Vec3> emitted_as_sent(const Hierarchy& h);
 
 // Each node's area mean of its leaf elements' receive factors.
 std::vector<double> mean_receive(const Hierarchy& h);

@@ -47,7 +47,7 @@ class ClusterGather {
   const RayScene* rays_;
   std::vector<Vec3> H_, Hg_;
   std::vector<double> row_;
-  std::vector<Vec3> emitted_;  // per node: its emission as sent (× send), area-averaged like Bt
+  std::vector<Vec3> emitted_;  // per node: its emission as sent (emitted_as_sent)
 };
 
 // The solution over one leaf: what does not depend on the point (per quadrant of the leaf) gathered
@@ -73,7 +73,6 @@ class LeafRadiosity {
   bool flat_;
   bool lit_sides_ = false;  // transmitting, with punctual lights: their variation on both sides
   Vec3 tau_, D_front_, D_back_;
-  Polygon back_;
   std::array<Polygon, 4> quadrants_;
   std::array<Vec3, 4> H_{};   // by the shares: every source but those near
   std::array<Vec3, 4> Hg_{};  // gathered: what the sources not taken at the point reflect
