@@ -4,13 +4,13 @@
 # out-of-memory) are written to tests/fuzz/crashers/<target>/ to be kept as regression inputs:
 # the ctest tests fuzz.replay.* replay them with the saved corpus in every build.
 # Usage: scripts/fuzz.sh [SECONDS per target, default 300] [TARGET...]   (targets: gltf chunk
-#        walkthrough manifest mgf). WALKRAD_FUZZ_MERGE=1 merges new coverage into tests/fuzz/corpus/.
+#        walkthrough manifest mgf ies). WALKRAD_FUZZ_MERGE=1 merges new coverage into tests/fuzz/corpus/.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-300}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(gltf chunk walkthrough manifest mgf)
+((${#targets[@]})) || targets=(gltf chunk walkthrough manifest mgf ies)
 build=${WALKRAD_FUZZ_BUILD_DIR:-$here/build-fuzz}
 "$here/scripts/install-deps.sh" --fuzz
 

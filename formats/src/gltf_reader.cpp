@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "gltf_access.h"
+#include "gltf_ies.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
@@ -136,19 +137,20 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
     throw InputError(file, place, "reflectance + transmittance must lie in [0, 1] (energy cannot be created)");
   if (std::min({mat.emission.x, mat.emission.y, mat.emission.z}) < 0)
     throw InputError(file, place, "emission must not be negative");
-  // ρ = 1 keeps energy forever and a closed scene never converges. A file that states it (an explicit
-  // baseColorFactor, no texture) is refused; where it comes from glTF's default white or a texture's
-  // mean, it is capped, as are values in (0.99, 1), and said so.
+  // ρ = 1 absorbs nothing. Stated in the file (an explicit baseColorFactor, no texture), a channel of
+  // 1 is kept, with a warning: the scene has a solution where light escapes or other surfaces absorb,
+  // which the bake checks (bake.cpp refuses a closed scene where nothing absorbs). Values in (0.99, 1)
+  // and those from glTF's default white or a texture's mean are capped at 0.99, and said so: they
+  // converge slowly for a difference nobody sees.
   const bool stated = gm.values.count("baseColorFactor") > 0 && mat.reflectance_texture < 0;
-  if (stated && max_component(mat.reflectance) >= 1)
-    throw InputError(file, place, "a reflectance of 1 (baseColorFactor) reflects all the light it receives, and a "
-                                  "closed scene of it never converges: use at most 0.99");
   constexpr double kMaxReflectance = 0.99;
-  if (max_component(mat.reflectance) > kMaxReflectance) {
-    mat.reflectance = {std::min(mat.reflectance.x, kMaxReflectance), std::min(mat.reflectance.y, kMaxReflectance),
-                       std::min(mat.reflectance.z, kMaxReflectance)};
-    scene.warnings.push_back(place + " \"" + mat.name + "\": reflectance capped at 0.99");
-  }
+  const auto cap = [&](double c) { return stated && c == 1.0 ? c : std::min(c, kMaxReflectance); };
+  const Vec3 capped(cap(mat.reflectance.x), cap(mat.reflectance.y), cap(mat.reflectance.z));
+  if (capped != mat.reflectance) scene.warnings.push_back(place + " \"" + mat.name + "\": reflectance capped at 0.99");
+  mat.reflectance = capped;
+  if (max_component(mat.reflectance) >= 1)
+    scene.warnings.push_back(place + " \"" + mat.name + "\": reflectance 1 absorbs nothing: the scene needs light to "
+                             "escape or other surfaces to absorb it (the bake checks)");
   return mat;
 }
 
@@ -214,6 +216,7 @@ struct Reader {
   std::vector<int> material_map;  // glTF material index → scene material (-1: default)
   int default_material = -1;
   std::vector<bool> visited;      // glTF 2.0 §3.5.3: nodes form disjoint strict trees (no cycles, one parent)
+  GltfIesLights ies;              // EXT_lights_ies luminaires
 
   uint32_t material_for(int gltf_material) {
     if (gltf_material >= 0 && gltf_material < int(model.materials.size())) return uint32_t(material_map[gltf_material]);
@@ -368,6 +371,7 @@ struct Reader {
     }
     if (n.camera >= 0 && n.camera < int(model.cameras.size())) add_camera(n.camera, world, node);
     add_light(node, world);
+    ies.add(node, transform_point(world, {0, 0, 0}), transform_vector(world, {0, 0, -1}), transform_vector(world, {0, 1, 0}), scene);
     for (int child : n.children) visit(child, world, depth + 1);
   }
 };
@@ -378,7 +382,7 @@ Scene read_gltf(const std::string& path) {
   const tinygltf::Model model = gltf_access::load(path, /*load_images=*/true);
   Scene scene;
   scene.source = path;
-  Reader r{model, path, scene, {}, -1, std::vector<bool>(model.nodes.size(), false)};
+  Reader r{model, path, scene, {}, -1, std::vector<bool>(model.nodes.size(), false), GltfIesLights(model, path)};
   for (size_t i = 0; i < model.materials.size(); ++i) {
     scene.materials.push_back(convert_material(model, int(i), scene, path));
     r.material_map.push_back(int(i));

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -260,7 +261,7 @@ class Reader {
     else if (kw == "fh") face_with_holes();
     else if (kw == "i") include();
     else if (kw == "o") object();
-    else if (kw == "ies") ++ies_;
+    else if (kw == "ies") luminaire();
     else primitive();
   }
 
@@ -353,8 +354,6 @@ class Reader {
     } else if (kw == "rd" || kw == "td") {
       count(1, 1);
       (kw == "rd" ? m.rd : m.td) = fraction(1);
-      if (kw == "rd" && m.rd >= 1)
-        fail("rd: a reflectance of 1 reflects all the light it receives, and a closed scene of it never converges: use at most 0.99");
       (kw == "rd" ? m.rd_c : m.td_c) = *colour_;
     } else if (kw == "ed") {
       count(1, 1);
@@ -390,6 +389,50 @@ class Reader {
     if (entity_->args.size() == 2) ++objects_;
     else if (objects_ == 0) fail("o: end of an object that was not begun");
     else --objects_;
+  }
+
+  // ies pathname [-m multiplier] [transform]: an IES luminaire at the origin of its transform, its
+  // web's zero point along −Z and type C's horizontal angle 0 along +X (the MGF spec; ies.h). The
+  // candela become W/sr as ed's lm/m² become W/m² (÷ kWhiteEfficacy), in the current colour.
+  void luminaire() {
+    count(1, SIZE_MAX);
+    fs::path target(entity_->args[1]);
+    if (target.is_relative()) target = fs::path(file_->path).parent_path() / target;
+    const std::string path = target.lexically_normal().string();
+    size_t first = 2;
+    double multiplier = 1;
+    if (entity_->args.size() > 2 && entity_->args[2] == "-m") {
+      if (entity_->args.size() < 4) fail("ies: -m needs a multiplier");
+      multiplier = number(3);
+      if (!(multiplier >= 0) || !std::isfinite(multiplier)) fail("ies: the multiplier must be finite and not negative");
+      first = 4;
+    }
+    std::shared_ptr<const IesProfile>& profile = profiles_[canonical(path)];
+    if (!profile) {
+      const std::vector<unsigned char> bytes = input_limits::read_file(path, kMaxIesBytes, "IES file");
+      IesProfile p = parse_ies(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+      p.text.assign(bytes.begin(), bytes.end());
+      profile = std::make_shared<const IesProfile>(std::move(p));
+    }
+    const size_t frames_before = frames_.size();
+    if (entity_->args.size() > first) push_frame(first, 0);
+    do {
+      const Affine& xf = world();
+      PunctualLight l;
+      l.type = PunctualLight::Type::ies;
+      l.profile = profile;
+      l.name = fs::path(path).stem().string() + "-" + std::to_string(scene_.lights.size());
+      l.position = xf.point({0, 0, 0});
+      const Vec3 direction = xf.point({0, 0, -1}) - l.position, up = xf.point({0, 1, 0}) - l.position;
+      const Vec3 u = up - normalize(direction) * dot(up, normalize(direction));
+      if (!(length(direction) > 0) || !(length(u) > 1e-9 * length(up))) fail("ies: the luminaire's transform is degenerate");
+      l.direction = normalize(direction);
+      l.up = normalize(u);
+      const double tilt = std::acos(std::clamp(-l.direction.z, -1.0, 1.0)) * 180 / kPi;  // MGF's down is −Z
+      l.intensity = mgf::linear_srgb(*colour_, multiplier * profile->tilt_factor(tilt) / mgf::kWhiteEfficacy);
+      scene_.lights.push_back(l);
+    } while (frames_.size() > frames_before && advance(frames_.back()));
+    if (frames_.size() > frames_before) frames_.pop_back();
   }
 
   void include() {
@@ -430,12 +473,14 @@ class Reader {
     mat.emission = mgf::linear_srgb(m.ed_c, m.ed / mgf::kWhiteEfficacy, &desaturated_e);
     if (desaturated_r || desaturated_e) out_of_gamut_.insert(mat.name);
     if ((m.rd > 0 && mgf::is_black(m.rd_c)) || (m.ed > 0 && mgf::is_black(m.ed_c))) black_.insert(mat.name);
-    constexpr double kMaxReflectance = 0.99;  // ρ = 1 never converges in a closed scene (as read_gltf)
-    if (max_component(mat.reflectance) > kMaxReflectance) {
-      mat.reflectance = {std::min(mat.reflectance.x, kMaxReflectance), std::min(mat.reflectance.y, kMaxReflectance),
-                         std::min(mat.reflectance.z, kMaxReflectance)};
-      capped_.insert(mat.name);
+    // As read_gltf: rd 1 is kept (1 per channel at most), with a warning: the bake refuses a closed
+    // scene where nothing absorbs. Channels in (0.99, 1) are capped at 0.99 (slow for nothing visible).
+    const double most = m.rd >= 1 ? 1.0 : 0.99;
+    if (max_component(mat.reflectance) > most) {
+      mat.reflectance = {std::min(mat.reflectance.x, most), std::min(mat.reflectance.y, most), std::min(mat.reflectance.z, most)};
+      if (m.rd < 1) capped_.insert(mat.name);
     }
+    if (m.rd >= 1) absorbs_nothing_.insert(mat.name);
     if (m.rs > 0) ignored_["specular reflectance (rs)"].insert(mat.name);
     if (m.ts > 0) ignored_["specular transmittance (ts)"].insert(mat.name);
     mat.transmittance = mgf::linear_srgb(m.td_c, m.td, &desaturated_r);
@@ -604,7 +649,6 @@ class Reader {
     for (const auto& [kw, u] : unknown_)
       w.push_back(std::to_string(u.first) + " unknown '" + kw + "' entit" + (u.first == 1 ? "y" : "ies") +
                   " skipped (first at " + u.second + ")");
-    if (ies_) w.push_back(std::to_string(ies_) + " 'ies' entities skipped: IES luminaires are not supported");
     if (objects_) w.push_back(std::to_string(objects_) + " objects (o) left open at the end");
     w.insert(w.end(), warnings_.begin(), warnings_.end());
     if (!unstated_sides_.empty() && options_.default_sides == 1)
@@ -615,6 +659,9 @@ class Reader {
                   "): walkrad's materials are diffuse");
     if (!capped_.empty())
       w.push_back("reflectance capped at 0.99 in " + std::to_string(capped_.size()) + " materials (" + some(capped_) + ")");
+    if (!absorbs_nothing_.empty())
+      w.push_back("rd 1 in " + std::to_string(absorbs_nothing_.size()) + " materials (" + some(absorbs_nothing_) +
+                  "): they absorb nothing, so the scene needs light to escape or other surfaces to absorb it (the bake checks)");
     if (!black_.empty())
       w.push_back(std::to_string(black_.size()) + " materials take a colour with chromaticity y = 0, which has no luminance: " +
                   "black, as in RenderPark (" + some(black_) + ")");
@@ -657,9 +704,10 @@ class Reader {
   std::vector<std::string> base_names_;              // scene material → its MGF name
 
   std::map<std::string, std::pair<uint64_t, std::string>> unknown_;  // keyword → count, first place
-  uint64_t ies_ = 0, nonplanar_ = 0, untriangulated_ = 0;
+  uint64_t nonplanar_ = 0, untriangulated_ = 0;
+  std::unordered_map<std::string, std::shared_ptr<const IesProfile>> profiles_;  // IES files by canonical path
   std::vector<std::string> warnings_;
-  std::set<std::string> unstated_sides_, capped_, out_of_gamut_, black_;
+  std::set<std::string> unstated_sides_, capped_, out_of_gamut_, black_, absorbs_nothing_;
   std::map<std::string, std::set<std::string>> ignored_;
 };
 

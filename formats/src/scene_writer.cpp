@@ -83,6 +83,19 @@ std::vector<double> camera_rotation(const Viewpoint& v) {
   return {x / n, y / n, z / n, w / n};
 }
 
+// Raw bytes in buffer 0 as a view of their own (no accessor), 4-byte aligned like the others.
+int append_bytes(tinygltf::Model& model, const std::string& bytes) {
+  auto& buf = model.buffers[0].data;
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = bytes.size();
+  buf.insert(buf.end(), bytes.begin(), bytes.end());
+  while (buf.size() % 4) buf.push_back(0);
+  model.bufferViews.push_back(view);
+  return int(model.bufferViews.size()) - 1;
+}
+
 }  // namespace
 
 void write_scene_gltf(const Scene& scene, const std::string& path) {
@@ -173,7 +186,48 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
     model.nodes.push_back(node);
     gscene.nodes.push_back(int(model.nodes.size()) - 1);
   }
+  // EXT_lights_ies: each profile once, its file's bytes in a bufferView; a node per luminaire.
+  tinygltf::Value::Array profiles;
+  std::vector<const IesProfile*> written;
+  for (const PunctualLight& l : scene.lights) {
+    if (l.type != PunctualLight::Type::ies || !l.profile) continue;
+    size_t index = std::find(written.begin(), written.end(), l.profile.get()) - written.begin();
+    if (index == written.size()) {
+      written.push_back(l.profile.get());
+      tinygltf::Value::Object profile;
+      profile["bufferView"] = tinygltf::Value(append_bytes(model, l.profile->text));
+      profile["mimeType"] = tinygltf::Value(std::string("application/x-ies-lm-63"));
+      profile["name"] = tinygltf::Value(std::filesystem::path(l.profile->source).filename().string());
+      profiles.push_back(tinygltf::Value(profile));
+    }
+    // The reader multiplies by the tilt factor at the node's tilt: divided out here.
+    const double tilt = l.profile->tilt_factor(std::acos(std::clamp(-l.direction.y, -1.0, 1.0)) * 180 / kPi);
+    const double peak = max_component(l.intensity);
+    tinygltf::Value::Object instance;
+    instance["light"] = tinygltf::Value(int(index));
+    instance["multiplier"] = tinygltf::Value(tilt > 0 ? peak / tilt : 0.0);
+    instance["color"] = tinygltf::Value(tinygltf::Value::Array{
+        tinygltf::Value(peak > 0 ? l.intensity.x / peak : 1.0), tinygltf::Value(peak > 0 ? l.intensity.y / peak : 1.0),
+        tinygltf::Value(peak > 0 ? l.intensity.z / peak : 1.0)});
+    Viewpoint frame;
+    frame.forward = l.direction;
+    frame.up = l.up;
+    tinygltf::Node node;
+    node.name = l.name;
+    node.translation = {l.position.x, l.position.y, l.position.z};
+    node.rotation = camera_rotation(frame);
+    node.extensions["EXT_lights_ies"] = tinygltf::Value(instance);
+    model.nodes.push_back(node);
+    gscene.nodes.push_back(int(model.nodes.size()) - 1);
+  }
+  if (!profiles.empty()) {
+    tinygltf::Value::Object top;
+    top["lights"] = tinygltf::Value(profiles);
+    model.extensions["EXT_lights_ies"] = tinygltf::Value(top);
+    model.extensionsUsed.push_back("EXT_lights_ies");
+  }
   for (const PunctualLight& l : scene.lights) {  // KHR_lights_punctual: a node shining along its −Z
+    if (l.type == PunctualLight::Type::ies) continue;
     tinygltf::Light light;
     light.name = l.name;
     light.type = l.type == PunctualLight::Type::spot ? "spot" : "point";

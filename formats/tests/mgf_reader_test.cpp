@@ -505,24 +505,70 @@ TEST(MgfReader, MaterialsTemplatesRedefinitionsAndSides) {
   // MGF's own default (two-sided) on request.
   const Scene both = load(kSquare + "m p =\n rd 0.5\nf q0 q1 q2 q3\n", nullptr, MgfOptions{0.02, 2, 50'000'000});
   EXPECT_EQ(both.polygons.size(), 2u);
-  // Reflectance just below 1 is capped at 0.99 (1 itself is refused: bad_input_test.cpp).
+  // Reflectance just below 1 is capped at 0.99; 1 itself is kept, with a warning (the bake refuses a
+  // closed scene where nothing absorbs).
   const Scene white = load(kSquare + "m w =\n rd 0.995\nf q0 q1 q2 q3\n");
   expect_near(white.materials[0].reflectance, {0.99, 0.99, 0.99});
   EXPECT_TRUE(has_warning(white, "capped at 0.99"));
+  const Scene one = load(kSquare + "m w =\n rd 1\nf q0 q1 q2 q3\n");
+  EXPECT_LE(max_component(one.materials[0].reflectance), 1.0);
+  EXPECT_NEAR(luminance(one.materials[0].reflectance), 1.0, 1e-6);
+  EXPECT_TRUE(has_warning(one, "rd 1 in 1 materials (w): they absorb nothing"));
+  EXPECT_FALSE(has_warning(one, "capped"));
 }
 
 TEST(MgfReader, ObjectsAndUnknownEntities) {
   MgfStats stats;
   const Scene s = load(kSquare + "o room\n o wall\n  f q0 q1 q2 q3\n o\n" +
                            std::string(12 * 1, ' ') + "foo 1 2 3\nfoo\nfoo\nfoo\nfoo\nfoo\nfoo\nfoo\nfoo\nfoo\nfoo\nfoo\n"
-                           "bar baz\nies lamp.ies\n#comment\n# another\n",
+                           "bar baz\n#comment\n# another\n",
                        &stats);
   EXPECT_EQ(s.polygons.size(), 1u);
   EXPECT_EQ(stats.entities.at("o"), 3u);
   EXPECT_TRUE(has_warning(s, "12 unknown 'foo' entities skipped (first at "));
   EXPECT_TRUE(has_warning(s, "1 unknown 'bar' entity skipped"));
-  EXPECT_TRUE(has_warning(s, "1 'ies' entities skipped"));
   EXPECT_TRUE(has_warning(s, "1 objects (o) left open"));
+}
+
+// ies (issue 24): a luminaire per array instance at its transform's origin, aimed along the
+// transform's −Z with its +Y as the profile's 90° plane; candela × multiplier ÷ 179 lm/W per channel
+// in the current colour; the profile read once and shared; a missing or bad profile names its file.
+TEST(MgfReader, IesLuminaires) {
+  const std::string dir = test_dir();
+  write(dir, "lamps/spot.ies",
+        "IESNA:LM-63-2002\r\nTILT=NONE\r\n1 -1 1 3 1 1 2 0 0 0\r\n1 1 10\r\n0 45 90\r\n0\r\n100 50 0\r\n");
+  const std::string scene = write(dir, "scene.mgf", kSquare + "m w =\n rd 0.5\nf q0 q1 q2 q3\n"
+                                                  "ies lamps/spot.ies -m 2 -rz 90 -t 1 2 3 -a 2 -t 0 0.5 0\n");
+  const Scene s = read_mgf(scene);
+  ASSERT_EQ(s.lights.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    const PunctualLight& l = s.lights[k];
+    EXPECT_EQ(l.type, PunctualLight::Type::ies);
+    expect_near(l.position, {1, 2 + 0.5 * double(k), 3});
+    expect_near(l.direction, {0, 0, -1});
+    expect_near(l.up, {-1, 0, 0});  // +Y turned 90° about z
+    expect_near(l.intensity, {2 / 179.0, 2 / 179.0, 2 / 179.0}, 1e-12);
+    ASSERT_TRUE(l.profile);
+    EXPECT_EQ(l.profile.get(), s.lights[0].profile.get());
+    EXPECT_NEAR(l.profile->intensity({0, 0, -1}), 100, 1e-9);
+    EXPECT_NE(l.profile->text.find("TILT=NONE"), std::string::npos);
+  }
+  const std::string missing = write(dir, "missing.mgf", kSquare + "m w =\n rd 0.5\nf q0 q1 q2 q3\nies nowhere.ies\n");
+  try {
+    read_mgf(missing);
+    ADD_FAILURE() << "a missing profile was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nowhere.ies"), std::string::npos) << e.what();
+  }
+  write(dir, "bad.ies", "IESNA:LM-63-2002\r\nTILT=NONE\r\n1 -1 1 3 1 1 2 0 0 0\r\n1 1 10\r\n0 45 90\r\n0\r\n100 -50 0\r\n");
+  const std::string bad = write(dir, "bad.mgf", kSquare + "m w =\n rd 0.5\nf q0 q1 q2 q3\nies bad.ies -m 2\n");
+  try {
+    read_mgf(bad);
+    ADD_FAILURE() << "a negative candela was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.file().find("bad.ies"), std::string::npos) << e.what();
+    EXPECT_EQ(e.place(), "line 7") << e.what();
+  }
 }
 
 // ---- malformed input ----------------------------------------------------------------------------

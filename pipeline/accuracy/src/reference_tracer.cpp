@@ -44,7 +44,7 @@ Vec3 cosine_direction(const Vec3& n, double u1, double u2) {
 double power_heuristic(double f, double g) { return f * f / (f * f + g * g); }
 
 // A punctual light's intensity towards unit direction `out` (from the light) at distance r, written
-// from the KHR_lights_punctual text (not from the solvers' punctual_lights.h): a spot's angular
+// from the KHR_lights_punctual and EXT_lights_ies texts (not from the solvers' punctual_lights.h): a spot's angular
 // attenuation is clamp(cd · scale + offset, 0, 1)², scale = 1 / max(0.001, cos inner − cos outer),
 // offset = −cos outer · scale, cd the cosine to its axis; the range's window clamp(1 − (r/range)⁴, 0, 1).
 Vec3 punctual_intensity(const PunctualLight& l, const Vec3& out, double r) {
@@ -53,6 +53,12 @@ Vec3 punctual_intensity(const PunctualLight& l, const Vec3& out, double r) {
     const double scale = 1.0 / std::max(0.001, std::cos(l.inner_cone) - std::cos(l.outer_cone));
     const double a = std::clamp(dot(l.direction, out) * scale - std::cos(l.outer_cone) * scale, 0.0, 1.0);
     k = a * a;
+  }
+  // A luminaire (EXT_lights_ies): the profile's candela towards `out` in the node's frame, whose
+  // axes are X = up × Z, Y = up, Z = −direction (the extension's text; ies.h interpolates the web).
+  if (l.type == PunctualLight::Type::ies) {
+    const Vec3 z = l.direction * -1.0, x = cross(l.up, z);
+    k = l.profile ? l.profile->intensity({dot(out, x), dot(out, l.up), dot(out, z)}) : 0.0;
   }
   if (l.range > 0) k *= std::clamp(1.0 - std::pow(r / l.range, 4.0), 0.0, 1.0);
   return l.intensity * k;

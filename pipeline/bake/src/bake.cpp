@@ -135,6 +135,17 @@ BakeSummary bake(const BakeSettings& s) {
   volume_settings.min_polygons = s.volume_min_polygons;
   volume_settings.penumbra_ratio = s.volume_penumbra_ratio;
   const VolumeClusters volume_clusters = s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{};
+  if (const std::vector<int> lossless = channels_without_absorption(scene); !lossless.empty()) {
+    uint64_t closure_rays = 0, pressed = 0;
+    if (is_closed(scene, rays, closure_rays, pressed)) {
+      static const char* kNames[] = {"red", "green", "blue"};
+      std::string which;
+      for (int c : lossless) which += std::string(which.empty() ? "" : ", ") + kNames[c];
+      throw InputError(s.scene, "", "the scene is closed (no ray escapes) and no surface absorbs light (reflectance + "
+                                    "transmittance = 1 everywhere, channels: " + which + "): every bounce returns all "
+                                    "the light, so radiosity has no finite value; give some surface a reflectance below 1");
+    }
+  }
   EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects, &volume_clusters);
   plan.transmission = transmission;
   if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());

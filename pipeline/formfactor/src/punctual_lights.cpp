@@ -7,7 +7,8 @@
 
 namespace walkrad {
 
-double spot_attenuation(const PunctualLight& light, const Vec3& out) {
+double light_distribution(const PunctualLight& light, const Vec3& out) {
+  if (light.type == PunctualLight::Type::ies) return light.profile ? light.profile->intensity(light_frame(light, out)) : 0.0;
   if (light.type != PunctualLight::Type::spot) return 1.0;
   // KHR_lights_punctual's reference: scale = 1 / max(0.001, cos inner − cos outer), offset = −cos outer · scale.
   const double scale = 1.0 / std::max(0.001, std::cos(light.inner_cone) - std::cos(light.outer_cone));
@@ -23,6 +24,7 @@ double range_window(const PunctualLight& light, double r) {
 
 Vec3 punctual_power(const PunctualLight& light) {
   if (light.type == PunctualLight::Type::point) return light.intensity * (4 * kPi);
+  if (light.type == PunctualLight::Type::ies) return light.profile ? light.intensity * light.profile->flux() : Vec3{};
   // ∫ spot dΩ = 2π ∫ spot d(cos θ) over cos θ ∈ [cos outer, 1]; the falloff depends on cos θ alone
   // (a clamped quadratic): midpoint rule, 4096 steps.
   constexpr int kSteps = 4096;
@@ -48,7 +50,7 @@ Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<Punct
     const Vec3 w = d / r;
     const double cosine = dot(normal, w);
     if (cosine <= 0) continue;
-    const double falloff = spot_attenuation(l, -w) * range_window(l, r);
+    const double falloff = light_distribution(l, -w) * range_window(l, r);
     if (falloff <= 0) continue;
     if (rays) {
       ++rays_cast;

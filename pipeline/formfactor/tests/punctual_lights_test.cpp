@@ -55,7 +55,7 @@ double exact_mean(const PunctualLight& l, const Polygon& p) {
       const Vec3 x(b.lo.x + (b.hi.x - b.lo.x) * (i + 0.5) / kN, b.lo.y + (b.hi.y - b.lo.y) * (j + 0.5) / kN, 0);
       const Vec3 d = l.position - x;
       const double r2 = dot(d, d), r = std::sqrt(r2);
-      sum += l.intensity.x * (d.z / r) / r2 * spot_attenuation(l, -(d / r));
+      sum += l.intensity.x * (d.z / r) / r2 * light_distribution(l, -(d / r));
     }
   return sum / (kN * kN);
 }

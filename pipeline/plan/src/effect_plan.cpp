@@ -93,6 +93,19 @@ bool pressed(const Scene& scene, size_t self, const Vec3& p, const Vec3& n, doub
 
 }  // namespace
 
+std::vector<int> channels_without_absorption(const Scene& scene) {
+  std::vector<bool> used(scene.materials.size(), false);
+  for (const Polygon& p : scene.polygons) used[p.material] = true;
+  std::vector<int> channels;
+  for (int c = 0; c < 3; ++c) {
+    bool absorbs = false;
+    for (size_t m = 0; m < used.size() && !absorbs; ++m)
+      absorbs = used[m] && scene.materials[m].reflectance[c] + scene.materials[m].transmittance[c] < 1;
+    if (!absorbs && !scene.polygons.empty()) channels.push_back(c);
+  }
+  return channels;
+}
+
 bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples) {
   const size_t n = scene.polygons.size();
   const double tol = 1e-6 * length(scene.bounds().diagonal());  // contact_split's default
@@ -145,11 +158,13 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.visibility.reason = !convex ? "some polygon lies behind another's plane: occlusion is possible"
                            : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
                                                 : "a convex enclosure with nothing inside: no occlusion possible, no rays";
-  size_t points = 0, spots = 0;
-  for (const PunctualLight& l : scene.lights) (l.type == PunctualLight::Type::spot ? spots : points) += 1;
+  size_t points = 0, spots = 0, luminaires = 0;
+  for (const PunctualLight& l : scene.lights)
+    (l.type == PunctualLight::Type::spot ? spots : l.type == PunctualLight::Type::ies ? luminaires : points) += 1;
   plan.punctual.on = !scene.lights.empty();
   plan.punctual.reason = plan.punctual.on ? std::to_string(points) + " point and " + std::to_string(spots) +
-                                                " spot lights (KHR_lights_punctual): shot straight to the elements, a shadow ray per sample"
+                                                " spot lights (KHR_lights_punctual), " + std::to_string(luminaires) +
+                                                " IES luminaires: shot straight to the elements, a shadow ray per sample"
                                           : "no punctual lights";
   plan.importance.on = !views.empty() && !view_independent;
   plan.importance.reason = views.empty() ? "no viewpoints: view-independent refinement (BF oracle)"

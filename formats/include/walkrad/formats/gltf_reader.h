@@ -2,9 +2,12 @@
 // - triangle primitives of every mesh under the default scene's node transforms (TRS or matrix);
 //   pairs of consecutive triangles that form a planar convex quad are merged into one quad;
 // - diffuse reflectance = baseColorFactor × the average of baseColorTexture (when present), capped at
-//   0.99 with a warning; an untextured baseColorFactor of 1 stated in the file is refused;
+//   0.99 with a warning, except a channel of exactly 1 stated by an untextured baseColorFactor, kept
+//   with a warning (the bake refuses a closed scene where nothing absorbs);
 // - emission E = π × emissiveFactor × KHR_materials_emissive_strength (glTF emission is radiance);
-// - camera nodes (perspective) become viewpoints.
+// - camera nodes (perspective) become viewpoints;
+// - lights: KHR_lights_punctual (point, spot) and EXT_lights_ies luminaires (profiles by uri, data
+//   URI or bufferView; multiplier, color; TILT=INCLUDE factors at the node's tilt from straight down, −Y).
 // Zero-area triangles are dropped and counted. Bad input throws InputError naming file and place.
 #pragma once
 

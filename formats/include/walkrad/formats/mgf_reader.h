@@ -8,14 +8,17 @@
 //   leaves the true surface by more than MgfOptions::tolerance × its radius;
 // - transforms (xf with -t -rx -ry -rz -s -mx -my -mz -i -a) on a stack, arrays repeated; includes
 //   (i, with a transform; paths relative to the including file; cycles and depths over 32 refused);
-//   objects (o);
+//   objects (o); luminaires (ies pathname [-m multiplier] [transform]: an IES LM-63 profile, ies.h, as a
+//   punctual light at the transform's origin, one per array instance; candela ÷ 179 lm/W → W/sr in
+//   the current colour, as ed; TILT factors at the luminaire's tilt from straight down, −Z);
 // - materials (m, rd, ed, sides; td, rs, ts, ir are checked and ignored: walkrad is diffuse) and
 //   colours (c, cxy, cspec, cct, cmix).
 // Conventions:
 // - Units: MGF coordinates are metres (the MGF spec); they are taken as they are.
 // - Colour: linear sRGB (Rec. 709 primaries, D65), MGF's neutral (equal-energy white) mapped to
 //   D65 keeping luminance, so luminance(reflectance) = rd (mgf_colour.h). "cxy .333 .333" is grey.
-// - Reflectance ρ = rd in the current colour, capped at 0.99 per channel (with a warning); rd ≥ 1 is refused.
+// - Reflectance ρ = rd in the current colour, capped at 0.99 per channel (with a warning); rd 1 is
+//   kept (at most 1 per channel), with a warning: the bake refuses a closed scene where nothing absorbs.
 // - Emission: ed is an emittance in lm/m²; E = ed / 179 W/m² of emitted radiosity (179 lm/W is
 //   the efficacy of equal-energy white, Radiance's WHITE_EFFICACY), in the colour of ed.
 // - Sides: a material with "sides 2" gives each face a second polygon with reversed winding, so

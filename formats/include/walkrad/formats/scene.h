@@ -6,9 +6,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "walkrad/formats/ies.h"
 #include "walkrad/formats/vec3.h"
 
 namespace walkrad {
@@ -84,23 +86,35 @@ struct Viewpoint {
 // extension's smooth falloff between the inner and outer cone. Its intensity is read as radiant
 // intensity, W/sr per channel (colour × intensity, the candela read one for one as W/sr, as emissive
 // factors are read as radiance). range > 0: the extension's window, nothing beyond it.
+// A luminaire (glTF EXT_lights_ies, MGF `ies`) is a point whose intensity varies with direction as
+// its IES profile says: W/sr = `intensity` (colour × multiplier × tilt factor) × the profile's candela
+// towards the direction, in the light's frame (ies.h; light_frame below): the web's zero point along
+// `direction` (the node's −Z), type C's horizontal angle 90° along `up` (the node's +Y).
 struct PunctualLight {
-  enum class Type { point, spot };
+  enum class Type { point, spot, ies };
   std::string name;
   Type type = Type::point;
   Vec3 position;
-  Vec3 direction{0, 0, -1};  // spot: unit
-  Vec3 intensity;            // W/sr per channel
+  Vec3 direction{0, 0, -1};  // spot, ies: unit; the node's −Z
+  Vec3 up{0, 1, 0};          // ies: unit, orthogonal to direction; the node's +Y
+  Vec3 intensity;            // W/sr per channel (ies: per candela)
   double range = 0;          // metres; 0: unlimited
   double inner_cone = 0, outer_cone = 0.7853981633974483;  // spot: radians, 0 ≤ inner < outer ≤ π/2
+  std::shared_ptr<const IesProfile> profile;  // ies: the photometric data (shared, never changed)
 };
+
+// A world direction in a luminaire's own frame (ies.h): its node's X, Y and Z axes.
+inline Vec3 light_frame(const PunctualLight& l, const Vec3& world) {
+  const Vec3 z = -l.direction, y = l.up, x = cross(y, z);
+  return {dot(world, x), dot(world, y), dot(world, z)};
+}
 
 struct Scene {
   std::string source;  // the file it was read from
   std::vector<Material> materials;
   std::vector<Polygon> polygons;
   std::vector<Viewpoint> cameras;  // viewpoints found in the scene file itself (glTF camera nodes)
-  std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual (point and spot)
+  std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual (point and spot), EXT_lights_ies, MGF ies
   std::vector<Texture> textures;      // reflectance and emission textures (Material::*_texture)
   uint64_t dropped_degenerate = 0;     // zero-area triangles dropped by the reader
   std::vector<std::string> warnings;  // what the reader changed or ignored, for the user

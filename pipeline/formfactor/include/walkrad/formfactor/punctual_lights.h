@@ -1,8 +1,11 @@
-// Direct light from punctual lights (glTF KHR_lights_punctual; issue 10). A point or spot light is no
-// surface, so no link can reach it: its irradiance is shot straight to the elements,
-//   E(x) = I · max(0, n·ω) / r² · spot(ω) · window(r) · V(x, p),   ω = (p − x) / r,
-// with the extension's spot falloff (the square of a linear ramp in cos θ between the outer and the
-// inner cone) and, when a range is given, its window clamp(1 − (r / range)⁴, 0, 1). An element's
+// Direct light from punctual lights (glTF KHR_lights_punctual, issue 10; IES luminaires, issue 24). A
+// point, spot or luminaire is no surface, so no link can reach it: its irradiance is shot straight to
+// the elements,
+//   E(x) = I · max(0, n·ω) / r² · D(−ω) · window(r) · V(x, p),   ω = (p − x) / r,
+// with D the light's distribution: 1 for a point, the extension's spot falloff (the square of a
+// linear ramp in cos θ between the outer and the inner cone), or a luminaire's IES candela towards
+// −ω in its own frame (ies.h, interpolated as LM-63 says); and, when a range is given, the window
+// clamp(1 − (r / range)⁴, 0, 1). An element's
 // irradiance is the mean over stratified points of its surface, one shadow ray (Embree) each; what
 // it reflects, ρ·E, then travels through the links like emitted light (hierarchical and classic).
 #pragma once
@@ -15,14 +18,15 @@
 
 namespace walkrad {
 
-// The spot falloff towards unit direction `out` (from the light); 1 for a point light.
-double spot_attenuation(const PunctualLight& light, const Vec3& out);
+// The distribution D towards unit direction `out` (from the light): 1 for a point light, the spot
+// falloff, or the IES profile's candela (the light's intensity is per candela).
+double light_distribution(const PunctualLight& light, const Vec3& out);
 
 // The range window at distance r (1 without a range).
 double range_window(const PunctualLight& light, double r);
 
-// What the light radiates, W per channel: 4π I for a point, I ∫ spot dΩ for a spot (the range's
-// window ignored: it depends on what stands where).
+// What the light radiates, W per channel: 4π I for a point, I ∫ spot dΩ for a spot, I × the
+// profile's flux for a luminaire (the range's window ignored: it depends on what stands where).
 Vec3 punctual_power(const PunctualLight& light);
 
 // Irradiance at a surface point from every light; rays: occluders (nullptr: none). rays_cast counts.

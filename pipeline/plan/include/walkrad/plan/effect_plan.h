@@ -76,6 +76,11 @@ bool is_convex_enclosure(const Scene& scene);
 // counted in pressed_samples), which see nothing. Deterministic.
 bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples);
 
+// The colour channels (0 red, 1 green, 2 blue) in which no polygon absorbs: ρ + τ ≥ 1 on every one.
+// In a closed scene such a channel has no finite radiosity (each bounce returns all the light: the
+// Neumann series Σ (ρF)ᵏ diverges), so the bake refuses it; where light escapes, it has one.
+std::vector<int> channels_without_absorption(const Scene& scene);
+
 // The transmission entry: on when a polygon's material transmits and the method is hierarchical;
 // overrides as plan_effects' ("transmission" → "on" or "off").
 Effect plan_transmission(const Scene& scene, const std::string& method, const std::map<std::string, std::string>& overrides);

@@ -1,0 +1,108 @@
+// GltfIesLights (gltf_ies.h): EXT_lights_ies profiles and their node instances.
+#include "gltf_ies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "input_limits.h"
+#include "walkrad/formats/error.h"
+
+namespace walkrad {
+
+namespace {
+constexpr const char* kIesMime = "application/x-ies-lm-63";
+}  // namespace
+
+double ies_tilt_degrees(const Vec3& direction, const Vec3& down) {
+  return std::acos(std::clamp(dot(normalize(direction), normalize(down)), -1.0, 1.0)) * 180 / kPi;
+}
+
+std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
+  const auto ext = model_.extensions.find("EXT_lights_ies");
+  const tinygltf::Value* lights = ext != model_.extensions.end() && ext->second.Has("lights") ? &ext->second.Get("lights") : nullptr;
+  if (!lights || !lights->IsArray() || index < 0 || size_t(index) >= lights->ArrayLen())
+    throw InputError(file_, "extensions.EXT_lights_ies.lights", "light profile " + std::to_string(index) + " does not exist");
+  if (profiles_.size() < lights->ArrayLen()) profiles_.resize(lights->ArrayLen());
+  if (profiles_[size_t(index)]) return profiles_[size_t(index)];
+  const std::string place = "extensions.EXT_lights_ies.lights[" + std::to_string(index) + "]";
+  const tinygltf::Value& p = lights->Get(index);
+  std::vector<unsigned char> bytes;
+  std::string source;
+  if (p.Has("uri") && p.Get("uri").IsString()) {
+    const std::string uri = p.Get("uri").Get<std::string>();
+    const size_t comma = uri.find(";base64,");
+    if (uri.rfind("data:", 0) == 0) {
+      // tinygltf decodes the data URIs of buffers and images only: the payload is given to it as one.
+      std::string mime;
+      if (comma == std::string::npos ||
+          !tinygltf::DecodeDataURI(&bytes, mime, "data:application/octet-stream;base64," + uri.substr(comma + 8), 0, false))
+        throw InputError(file_, place, "the data URI cannot be decoded (base64 expected)");
+      if (bytes.size() > kMaxIesBytes)
+        throw InputError(file_, place, "the profile exceeds " + std::to_string(kMaxIesBytes >> 20) + " MiB", kExitLimitReached);
+      source = file_ + " (" + place + ")";
+    } else {
+      source = (std::filesystem::path(file_).parent_path() / uri).string();
+      bytes = input_limits::read_file(source, kMaxIesBytes, "IES profile");
+    }
+  } else if (p.Has("bufferView") && p.Get("bufferView").IsInt()) {
+    if (!p.Has("mimeType") || !p.Get("mimeType").IsString() || p.Get("mimeType").Get<std::string>() != kIesMime)
+      throw InputError(file_, place, std::string("a profile in a bufferView needs mimeType \"") + kIesMime + "\"");
+    const int bv = p.Get("bufferView").GetNumberAsInt();
+    if (bv < 0 || bv >= int(model_.bufferViews.size())) throw InputError(file_, place, "bufferView index out of range");
+    const tinygltf::BufferView& view = model_.bufferViews[size_t(bv)];
+    if (view.buffer < 0 || view.buffer >= int(model_.buffers.size()) ||
+        view.byteOffset + view.byteLength > model_.buffers[size_t(view.buffer)].data.size())
+      throw InputError(file_, place, "bufferView " + std::to_string(bv) + " lies outside its buffer");
+    if (view.byteLength > kMaxIesBytes)
+      throw InputError(file_, place, "the profile exceeds " + std::to_string(kMaxIesBytes >> 20) + " MiB", kExitLimitReached);
+    const auto& data = model_.buffers[size_t(view.buffer)].data;
+    bytes.assign(data.begin() + long(view.byteOffset), data.begin() + long(view.byteOffset + view.byteLength));
+    source = file_ + " (" + place + ")";
+  } else {
+    throw InputError(file_, place, "a light profile needs a uri or a bufferView");
+  }
+  IesProfile profile = parse_ies(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), source);
+  profile.text.assign(bytes.begin(), bytes.end());
+  profiles_[size_t(index)] = std::make_shared<const IesProfile>(std::move(profile));
+  return profiles_[size_t(index)];
+}
+
+void GltfIesLights::add(int node, const Vec3& position, const Vec3& direction, const Vec3& up, Scene& scene) {
+  const tinygltf::Node& n = model_.nodes[size_t(node)];
+  const auto ext = n.extensions.find("EXT_lights_ies");
+  if (ext == n.extensions.end() || !ext->second.IsObject()) return;
+  const std::string place = "nodes[" + std::to_string(node) + "].extensions.EXT_lights_ies";
+  const tinygltf::Value& e = ext->second;
+  if (!e.Has("light") || !e.Get("light").IsInt()) throw InputError(file_, place, "'light' (a profile index) is required");
+  PunctualLight l;
+  l.type = PunctualLight::Type::ies;
+  l.profile = profile(e.Get("light").GetNumberAsInt());
+  double multiplier = 1;
+  if (e.Has("multiplier")) {
+    if (!e.Get("multiplier").IsNumber()) throw InputError(file_, place, "'multiplier' must be a number");
+    multiplier = e.Get("multiplier").GetNumberAsDouble();
+  }
+  Vec3 colour(1, 1, 1);
+  if (e.Has("color")) {
+    const tinygltf::Value& c = e.Get("color");
+    if (!c.IsArray() || c.ArrayLen() != 3 || !c.Get(0).IsNumber() || !c.Get(1).IsNumber() || !c.Get(2).IsNumber())
+      throw InputError(file_, place, "'color' must be 3 numbers");
+    colour = {c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()};
+  }
+  if (!(multiplier >= 0) || !std::isfinite(multiplier) || !is_finite(colour) || std::min({colour.x, colour.y, colour.z}) < 0)
+    throw InputError(file_, place, "multiplier and color must be finite and not negative");
+  // The extension clamps colour to [0, 1].
+  colour = {std::min(colour.x, 1.0), std::min(colour.y, 1.0), std::min(colour.z, 1.0)};
+  l.name = !n.name.empty() ? n.name : "luminaire-" + std::to_string(node);
+  l.position = position;
+  if (!is_valid_vertex(position) || !(length(direction) > 0)) throw InputError(file_, place, "the light's node transform is degenerate");
+  l.direction = normalize(direction);
+  const Vec3 u = up - l.direction * dot(up, l.direction);  // orthogonal even under a sheared transform
+  if (!(length(u) > 1e-9 * length(up))) throw InputError(file_, place, "the light's node transform is degenerate");
+  l.up = normalize(u);
+  l.intensity = colour * (multiplier * l.profile->tilt_factor(ies_tilt_degrees(l.direction, {0, -1, 0})));
+  scene.lights.push_back(l);
+}
+
+}  // namespace walkrad
