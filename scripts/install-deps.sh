@@ -11,6 +11,7 @@ packages=(
   libmeshoptimizer-dev libtbb-dev nlohmann-json3-dev libstb-dev libcli11-dev libfmt-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib
   libglfw3-dev libepoxy-dev libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 xvfb xauth
+  chromium
 )
 
 [ "${1:-}" = --fuzz ] && packages+=(clang libclang-rt-14-dev)
@@ -19,7 +20,8 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
-# Node.js runs the Khronos glTF validator; any Node >= 18 will do (Debian's, or one already present).
+# Node.js runs the Khronos glTF validator and builds the web viewer; any Node >= 18 will do (Debian's,
+# or one already present). Debian's chromium runs the web viewer's test (web/test/test_web.mjs).
 command -v node >/dev/null 2>&1 || missing+=(nodejs)
 command -v npm >/dev/null 2>&1 || missing+=(npm)
 
@@ -35,4 +37,11 @@ fi
 if [ ! -d "$here/tools/validator/node_modules/gltf-validator" ]; then
   echo "install-deps: installing the Khronos glTF validator (npm)"
   (cd "$here/tools/validator" && npm ci --no-audit --no-fund --loglevel=error)
+fi
+
+# The web viewer's three.js, its bundler (esbuild) and the browser driver of its test (playwright-core),
+# pinned by web/package-lock.json.
+if [ ! -d "$here/web/node_modules/three" ] || [ ! -d "$here/web/node_modules/esbuild" ] || [ ! -d "$here/web/node_modules/playwright-core" ]; then
+  echo "install-deps: installing the web viewer's packages (npm)"
+  (cd "$here/web" && npm ci --no-audit --no-fund --loglevel=error)
 fi

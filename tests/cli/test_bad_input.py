@@ -136,6 +136,14 @@ with open(bad_mgf, "w") as f:
     f.write("m lamp =\n\ted -3\n")
 expect("mgf-negative-emission", [bad_mgf], 3, bad_mgf, "line 2", "emittance must not be negative")
 
+# `walkrad web`: a folder that is no bake, and a viewer folder without a built viewer (exit 3, naming it).
+not_a_bake = os.path.join(work, "not-a-bake")
+os.makedirs(not_a_bake, exist_ok=True)
+run_case("web-not-a-bake", [walkrad, "web", not_a_bake], 3, [not_a_bake, "no manifest.json"])
+run_case("web-no-viewer", [walkrad, "web", not_a_bake, "--viewer", os.path.join(work, "no-viewer")], 3,
+         [os.path.join(work, "no-viewer"), "no built web viewer here"])
+shutil.rmtree(not_a_bake)
+
 # A zero-area triangle (a repeated vertex): a warning naming the file and the count; the rest is baked.
 flat, _, _ = with_extra_triangle("flat", [(0.1, 0.1, 0.1), (0.2, 0.1, 0.1), (0.2, 0.1, 0.1)])
 flat_out = os.path.join(work, "flat-ok")

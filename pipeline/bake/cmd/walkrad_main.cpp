@@ -12,6 +12,7 @@
 #include "walkrad/formats/scene_reader.h"
 #include "walkrad/formats/scene_writer.h"
 #include "walkrad/bake/bake.h"
+#include "walkrad/bake/web_viewer.h"
 #include "walkrad/output/bake_diff.h"
 #include "walkrad/output/bake_inspect.h"
 #include "walkrad/accuracy/sweep.h"
@@ -67,8 +68,9 @@ int main(int argc, char** argv) {
                        "hierarchical: polygons a cluster of small objects needs to be a volume")
       ->check(CLI::Range(uint32_t(2), uint32_t(1) << 30))->capture_default_str();
   bake_cmd->add_flag("--explain", bs.explain, "print the effect plan (what is simulated, and why) before solving");
-  bool no_compression = false;
+  bool no_compression = false, with_web = false;
   bake_cmd->add_flag("--no-compression", no_compression, "write plain glTF chunks (default: Draco)");
+  bake_cmd->add_flag("--web", with_web, "copy the web viewer into the bake folder (as `walkrad web`)");
   bake_cmd->add_option("--position-tolerance", bs.position_tolerance,
                        "Draco: largest position error, as a fraction of the scene's diagonal")
       ->check(CLI::Range(1e-9, 1e-2))->capture_default_str();
@@ -108,6 +110,12 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   diff_cmd->add_option("--position-tolerance", ds.position_tolerance, "vertex matching, fraction of the bake's diagonal")
       ->check(CLI::PositiveNumber)->capture_default_str();
+
+  // web: the web viewer copied into a bake folder (web/, issue 25).
+  std::string web_dir, web_viewer = default_web_viewer_dir();
+  CLI::App* web_cmd = app.add_subcommand("web", "copy the web viewer into a bake folder (then serve it: python3 -m http.server)");
+  web_cmd->add_option("bake", web_dir, "bake folder")->required();
+  web_cmd->add_option("--viewer", web_viewer, "the built viewer's folder")->capture_default_str();
 
   // inspect: what a bake folder holds; optionally its whole surface as JSON for scripts.
   std::string inspect_dir, inspect_mesh_json;
@@ -176,7 +184,9 @@ int main(int argc, char** argv) {
         std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
         bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
       }
+      if (with_web) check_web_viewer(default_web_viewer_dir());  // before the long work, not after it
       const BakeSummary s = bake(bs);
+      if (with_web) install_web_viewer(s.output, default_web_viewer_dir());
       std::printf("walkrad: baked %s: %zu elements, %zu triangles, %zu viewpoints, exposure %.4g, %.2f s\n",
                   s.output.c_str(), s.elements, s.triangles, s.viewpoints, s.exposure, s.seconds);
     }
@@ -214,6 +224,11 @@ int main(int argc, char** argv) {
       return d.same() ? kExitOk : kExitDiffers;
     }
     if (inspect_cmd->parsed()) inspect_bake(inspect_dir, inspect_mesh_json);
+    if (web_cmd->parsed()) {
+      install_web_viewer(web_dir, web_viewer);
+      std::printf("walkrad: web viewer in %s: serve the folder (cd %s && python3 -m http.server) and open http://localhost:8000/\n",
+                  web_dir.c_str(), web_dir.c_str());
+    }
     return kExitOk;
   } catch (const InputError& e) {
     std::fprintf(stderr, "walkrad: error: %s\n", e.what());
