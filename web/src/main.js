@@ -213,6 +213,7 @@ async function main() {
       if (state.playing) streamer.countMisses(needed, state.frame);
       render(t0);
     }
+    drawOverlay();  // loads land between frames too
     requestAnimationFrame(tick);
   }
   state.ready = true;

@@ -92,8 +92,15 @@ try {
                       `&budget=${budget / 1e6}&play=once&fps=30`);
       await page.waitForFunction(() => window.walkrad && (window.walkrad.done || window.walkrad.error), null,
                                  { timeout: 120000, polling: 100 });
+      await page.waitForTimeout(500);  // loads in flight land, the overlay catches up
       const r = await page.evaluate(() => ({ stats: window.walkrad.stats, misses: window.walkrad.missLog, first: window.walkrad.firstFrameMs,
-                                             times: window.walkrad.frameTimes }));
+                                             times: window.walkrad.frameTimes,
+                                             overlay: document.getElementById('overlay').textContent }));
+      // What the user reads: the overlay's counters.
+      const shown = /loads (\d+)\s+misses (\d+)/.exec(r.overlay);
+      check(shown && Number(shown[1]) === r.stats.loads && Number(shown[2]) === r.stats.misses,
+            `streaming: the overlay says '${r.overlay}', the counters ${JSON.stringify(r.stats)}`);
+      console.log(`overlay: ${r.overlay}`);
       const t = [...r.times].sort((a, b) => a - b);
       const q = (f) => t[Math.min(t.length - 1, Math.floor(f * t.length))];
       console.log(`stream: budget ${(budget / 1e6).toFixed(3)} MB of ${(bytes / 1e6).toFixed(3)} MB; ${JSON.stringify(r.stats)}; ` +
