@@ -61,6 +61,16 @@ write("gltf", "quad.glb", glb(doc, blob))
 embedded = json.loads(json.dumps(doc))
 embedded["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(blob).decode()
 write("gltf", "quad-embedded.gltf", json.dumps(embedded, indent=1))
+# The same with an EXT_lights_ies luminaire (a profile by data URI, a turned node, multiplier, colour).
+ies = "IESNA:LM-63-2002\r\nTILT=NONE\r\n1 -1 1 3 1 1 2 0 0 0\r\n1 1 10\r\n0 45 90\r\n0\r\n100 50 0\r\n"
+lit = json.loads(json.dumps(embedded))
+lit["extensionsUsed"].append("EXT_lights_ies")
+lit["extensions"] = {"EXT_lights_ies": {"lights": [
+    {"uri": "data:application/x-ies-lm-63;base64," + base64.b64encode(ies.encode()).decode()}]}}
+lit["nodes"].append({"name": "lamp", "translation": [0.5, 0.5, 2], "rotation": [0, 0, 0.3826834, 0.9238795],
+                     "extensions": {"EXT_lights_ies": {"light": 0, "multiplier": 2, "color": [1, 0.9, 0.8]}}})
+lit["scenes"][0]["nodes"].append(len(lit["nodes"]) - 1)
+write("gltf", "quad-ies-light.gltf", json.dumps(lit, indent=1))
 
 # A chunk as write_chunk lays it out: POSITION, NORMAL, COLOR_0, _RADIOSITY, u32 indices.
 normals = struct.pack("<12f", *([0, 0, 1] * 4))

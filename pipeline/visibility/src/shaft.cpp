@@ -38,9 +38,6 @@ Shaft::Shaft(const Bounds& a, const Bounds& b) {
           p.d = (p.n[k] * ak + p.n[l] * al);
           plane_[planes_++] = p;
         }
-}
-
-bool Shaft::overlaps(const Bounds& box) const {
   // Touching is not overlapping: a polygon that only touches the hull's boundary (the wall beside a
   // floor element) cannot block a segment between the two boxes' interiors, and ray end points are
   // offset off their surfaces into the hull. The margin absorbs rounding: 1e-9 of the hull's own size
@@ -49,16 +46,25 @@ bool Shaft::overlaps(const Bounds& box) const {
   // docs/numerics.md).
   const double extent = std::max({hull_.hi.x - hull_.lo.x, hull_.hi.y - hull_.lo.y, hull_.hi.z - hull_.lo.z});
   const double margin = 1e-9 * extent + rounding_at(hull_.lo) + rounding_at(hull_.hi);
+  for (int k = 0; k < 3; ++k) {
+    inner_lo_[k] = hull_.lo[k] + margin;
+    inner_hi_[k] = hull_.hi[k] - margin;
+    flat_[k] = !(hull_.hi[k] - hull_.lo[k] > 2 * margin);
+  }
+  for (int i = 0; i < planes_; ++i) inner_d_[i] = plane_[i].d - margin;
+}
+
+bool Shaft::overlaps(const Bounds& box) const {
   for (int k = 0; k < 3; ++k)
-    if (box.hi[k] <= hull_.lo[k] + margin || box.lo[k] >= hull_.hi[k] - margin) {
+    if (box.hi[k] <= inner_lo_[k] || box.lo[k] >= inner_hi_[k]) {
       // A flat hull (two coplanar elements) has zero thickness: only a box crossing its plane counts.
-      if (hull_.hi[k] - hull_.lo[k] > 2 * margin || box.hi[k] <= hull_.lo[k] || box.lo[k] >= hull_.hi[k]) return false;
+      if (!flat_[k] || box.hi[k] <= hull_.lo[k] || box.lo[k] >= hull_.hi[k]) return false;
     }
   for (int i = 0; i < planes_; ++i) {
     const Plane& p = plane_[i];
     // The box's corner furthest inside (most negative along n): outside if even it is not inside.
     const Vec3 inner(p.n.x >= 0 ? box.lo.x : box.hi.x, p.n.y >= 0 ? box.lo.y : box.hi.y, p.n.z >= 0 ? box.lo.z : box.hi.z);
-    if (dot(p.n, inner) >= p.d - margin) return false;
+    if (dot(p.n, inner) >= inner_d_[i]) return false;
   }
   return true;
 }

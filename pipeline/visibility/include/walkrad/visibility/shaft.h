@@ -30,6 +30,12 @@ class Shaft {
   };
   Plane plane_[12];
   int planes_ = 0;
+  // What overlaps() compares against, computed once (it runs for every tree node a link's shaft
+  // meets: half of a large level's solve): the hull shrunk by the margin, whether each axis is flat,
+  // and each plane's d less the margin.
+  Vec3 inner_lo_, inner_hi_;
+  bool flat_[3] = {};
+  double inner_d_[12] = {};
 };
 
 // Polygons of the tree (other than exclude_a and exclude_b, the two ends' own polygons) whose
