@@ -2,7 +2,9 @@
 #include "gltf_ies.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "input_limits.h"
@@ -12,6 +14,24 @@ namespace walkrad {
 
 namespace {
 constexpr const char* kIesMime = "application/x-ies-lm-63";
+}  // namespace
+
+namespace {
+// A relative URI's path as a file name: %XX escapes decoded (glTF 2.0 §2.8: "my%20lamp.ies").
+std::string uri_path(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    unsigned value = 0;
+    if (uri[i] == '%' && i + 2 < uri.size() && std::sscanf(uri.c_str() + i + 1, "%2x", &value) == 1 &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) && std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += char(value);
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
 }  // namespace
 
 double ies_tilt_degrees(const Vec3& direction, const Vec3& down) {
@@ -42,7 +62,7 @@ std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
         throw InputError(file_, place, "the profile exceeds " + std::to_string(kMaxIesBytes >> 20) + " MiB", kExitLimitReached);
       source = file_ + " (" + place + ")";
     } else {
-      source = (std::filesystem::path(file_).parent_path() / uri).string();
+      source = (std::filesystem::path(file_).parent_path() / uri_path(uri)).string();
       bytes = input_limits::read_file(source, kMaxIesBytes, "IES profile");
     }
   } else if (p.Has("bufferView") && p.Get("bufferView").IsInt()) {

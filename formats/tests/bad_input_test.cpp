@@ -197,6 +197,14 @@ TEST_F(BadInput, IesLightsInGltf) {
   EXPECT_DOUBLE_EQ(s.lights[0].profile->intensity({0, 0, -1}), 40);
   EXPECT_DOUBLE_EQ(s.lights[0].profile->intensity({1, 0, 0}), 20);
 
+  // By a relative uri, percent-encoded as glTF says.
+  write("my lamp.ies", ies);
+  nlohmann::json by_file = g;
+  by_file["extensions"]["EXT_lights_ies"]["lights"][0] = {{"uri", "my%20lamp.ies"}};
+  const Scene from_file = read_gltf(write("ies-file.gltf", by_file));
+  ASSERT_EQ(from_file.lights.size(), 1u);
+  EXPECT_EQ(from_file.lights[0].profile->text, ies);
+
   nlohmann::json wrong = g;
   wrong["nodes"].back()["extensions"]["EXT_lights_ies"]["light"] = 4;
   const std::string w = write("ies-index.gltf", wrong);
