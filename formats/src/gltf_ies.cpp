@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "input_limits.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
@@ -34,10 +33,6 @@ std::string uri_path(const std::string& uri) {
 }
 }  // namespace
 
-double ies_tilt_degrees(const Vec3& direction, const Vec3& down) {
-  return std::acos(std::clamp(dot(normalize(direction), normalize(down)), -1.0, 1.0)) * 180 / kPi;
-}
-
 std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
   const auto ext = model_.extensions.find("EXT_lights_ies");
   const tinygltf::Value* lights = ext != model_.extensions.end() && ext->second.Has("lights") ? &ext->second.Get("lights") : nullptr;
@@ -48,7 +43,6 @@ std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
   const std::string place = "extensions.EXT_lights_ies.lights[" + std::to_string(index) + "]";
   const tinygltf::Value& p = lights->Get(index);
   std::vector<unsigned char> bytes;
-  std::string source;
   if (p.Has("uri") && p.Get("uri").IsString()) {
     const std::string uri = p.Get("uri").Get<std::string>();
     const size_t comma = uri.find(";base64,");
@@ -58,12 +52,9 @@ std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
       if (comma == std::string::npos ||
           !tinygltf::DecodeDataURI(&bytes, mime, "data:application/octet-stream;base64," + uri.substr(comma + 8), 0, false))
         throw InputError(file_, place, "the data URI cannot be decoded (base64 expected)");
-      if (bytes.size() > kMaxIesBytes)
-        throw InputError(file_, place, "the profile exceeds " + std::to_string(kMaxIesBytes >> 20) + " MiB", kExitLimitReached);
-      source = file_ + " (" + place + ")";
     } else {
-      source = (std::filesystem::path(file_).parent_path() / uri_path(uri)).string();
-      bytes = input_limits::read_file(source, kMaxIesBytes, "IES profile");
+      const std::string path = (std::filesystem::path(file_).parent_path() / uri_path(uri)).string();
+      return profiles_[size_t(index)] = std::make_shared<const IesProfile>(read_ies(path));
     }
   } else if (p.Has("bufferView") && p.Get("bufferView").IsInt()) {
     if (!p.Has("mimeType") || !p.Get("mimeType").IsString() || p.Get("mimeType").Get<std::string>() != kIesMime)
@@ -74,18 +65,16 @@ std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
     if (view.buffer < 0 || view.buffer >= int(model_.buffers.size()) ||
         view.byteOffset + view.byteLength > model_.buffers[size_t(view.buffer)].data.size())
       throw InputError(file_, place, "bufferView " + std::to_string(bv) + " lies outside its buffer");
-    if (view.byteLength > kMaxIesBytes)
-      throw InputError(file_, place, "the profile exceeds " + std::to_string(kMaxIesBytes >> 20) + " MiB", kExitLimitReached);
     const auto& data = model_.buffers[size_t(view.buffer)].data;
     bytes.assign(data.begin() + long(view.byteOffset), data.begin() + long(view.byteOffset + view.byteLength));
-    source = file_ + " (" + place + ")";
   } else {
     throw InputError(file_, place, "a light profile needs a uri or a bufferView");
   }
-  IesProfile profile = parse_ies(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), source);
-  profile.text.assign(bytes.begin(), bytes.end());
-  profiles_[size_t(index)] = std::make_shared<const IesProfile>(std::move(profile));
-  return profiles_[size_t(index)];
+  // Embedded (a data URI or a bufferView): as read_ies's limit for files.
+  if (bytes.size() > kMaxIesBytes)
+    throw InputError(file_, place, "the profile exceeds " + std::to_string(kMaxIesBytes >> 20) + " MiB", kExitLimitReached);
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  return profiles_[size_t(index)] = std::make_shared<const IesProfile>(parse_ies(text, file_ + " (" + place + ")"));
 }
 
 void GltfIesLights::add(int node, const Vec3& position, const Vec3& direction, const Vec3& up, Scene& scene) {
@@ -118,10 +107,9 @@ void GltfIesLights::add(int node, const Vec3& position, const Vec3& direction, c
   l.position = position;
   if (!is_valid_vertex(position) || !(length(direction) > 0)) throw InputError(file_, place, "the light's node transform is degenerate");
   l.direction = normalize(direction);
-  const Vec3 u = up - l.direction * dot(up, l.direction);  // orthogonal even under a sheared transform
-  if (!(length(u) > 1e-9 * length(up))) throw InputError(file_, place, "the light's node transform is degenerate");
-  l.up = normalize(u);
-  l.intensity = colour * (multiplier * l.profile->tilt_factor(ies_tilt_degrees(l.direction, {0, -1, 0})));
+  l.up = orthogonal_up(l.direction, up);  // orthogonal even under a sheared transform
+  if (l.up == Vec3{}) throw InputError(file_, place, "the light's node transform is degenerate");
+  l.intensity = colour * (multiplier * l.profile->tilt_factor(l.direction, {0, -1, 0}));
   scene.lights.push_back(l);
 }
 

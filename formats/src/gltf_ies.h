@@ -29,9 +29,4 @@ class GltfIesLights {
   std::vector<std::shared_ptr<const IesProfile>> profiles_;
 };
 
-// The tilt (degrees) of a luminaire aimed along `direction` away from its photometric position,
-// aimed straight down (`down`: the scene's gravity, glTF −Y, MGF −Z): what TILT=INCLUDE data is
-// indexed by.
-double ies_tilt_degrees(const Vec3& direction, const Vec3& down);
-
 }  // namespace walkrad

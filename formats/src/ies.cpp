@@ -169,6 +169,7 @@ std::vector<double> node_weights(const std::vector<double>& deg, double (*w)(dou
 IesProfile parse_ies(std::string_view text, const std::string& source) {
   IesProfile p;
   p.source = source;
+  p.text = std::string(text);
   p.version = "LM-63-1986";  // no version line: LM-63-1986, whose first lines are free labels
   size_t pos = text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;  // a UTF-8 byte order mark
   int line = 1;
@@ -318,6 +319,10 @@ double IesProfile::tilt_factor(double tilt_deg) const {
   double t;
   locate(tilt_angles, tilt_deg, i, t);
   return (1 - t) * tilt_factors[i] + t * tilt_factors[i + 1];
+}
+
+double IesProfile::tilt_factor(const Vec3& aim, const Vec3& down) const {
+  return tilt_factor(std::acos(std::clamp(dot(normalize(aim), normalize(down)), -1.0, 1.0)) / kDeg);
 }
 
 double IesProfile::flux() const {

@@ -408,12 +408,7 @@ class Reader {
       first = 4;
     }
     std::shared_ptr<const IesProfile>& profile = profiles_[canonical(path)];
-    if (!profile) {
-      const std::vector<unsigned char> bytes = input_limits::read_file(path, kMaxIesBytes, "IES file");
-      IesProfile p = parse_ies(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
-      p.text.assign(bytes.begin(), bytes.end());
-      profile = std::make_shared<const IesProfile>(std::move(p));
-    }
+    if (!profile) profile = std::make_shared<const IesProfile>(read_ies(path));
     const size_t frames_before = frames_.size();
     if (entity_->args.size() > first) push_frame(first, 0);
     do {
@@ -424,12 +419,11 @@ class Reader {
       l.name = fs::path(path).stem().string() + "-" + std::to_string(scene_.lights.size());
       l.position = xf.point({0, 0, 0});
       const Vec3 direction = xf.point({0, 0, -1}) - l.position, up = xf.point({0, 1, 0}) - l.position;
-      const Vec3 u = up - normalize(direction) * dot(up, normalize(direction));
-      if (!(length(direction) > 0) || !(length(u) > 1e-9 * length(up))) fail("ies: the luminaire's transform is degenerate");
+      if (!(length(direction) > 0)) fail("ies: the luminaire's transform is degenerate");
       l.direction = normalize(direction);
-      l.up = normalize(u);
-      const double tilt = std::acos(std::clamp(-l.direction.z, -1.0, 1.0)) * 180 / kPi;  // MGF's down is −Z
-      l.intensity = mgf::linear_srgb(*colour_, multiplier * profile->tilt_factor(tilt) / mgf::kWhiteEfficacy);
+      l.up = orthogonal_up(l.direction, up);
+      if (l.up == Vec3{}) fail("ies: the luminaire's transform is degenerate");
+      l.intensity = mgf::linear_srgb(*colour_, multiplier * profile->tilt_factor(l.direction, {0, 0, -1}) / mgf::kWhiteEfficacy);
       scene_.lights.push_back(l);
     } while (frames_.size() > frames_before && advance(frames_.back()));
     if (frames_.size() > frames_before) frames_.pop_back();

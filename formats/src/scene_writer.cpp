@@ -201,7 +201,7 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
       profiles.push_back(tinygltf::Value(profile));
     }
     // The reader multiplies by the tilt factor at the node's tilt: divided out here.
-    const double tilt = l.profile->tilt_factor(std::acos(std::clamp(-l.direction.y, -1.0, 1.0)) * 180 / kPi);
+    const double tilt = l.profile->tilt_factor(l.direction, {0, -1, 0});
     const double peak = max_component(l.intensity);
     tinygltf::Value::Object instance;
     instance["light"] = tinygltf::Value(int(index));

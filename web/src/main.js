@@ -206,9 +206,9 @@ async function main() {
     } else if (!state.flying) {
       showFrame(state.frame);
     }
-    const place = cameraPlace();
-    const needed = chunksNeeded(manifest, place);
-    streamer.update(chunkPriorities(manifest, place, state.flying ? 0 : lookahead), needed);
+    const where = cameraPlace();
+    const needed = chunksNeeded(manifest, where);
+    streamer.update(chunkPriorities(manifest, where, state.flying ? 0 : lookahead), needed);
     if (!state.done) {
       if (state.playing) streamer.countMisses(needed, state.frame);
       render(t0);

@@ -54,12 +54,9 @@ Vec3 punctual_intensity(const PunctualLight& l, const Vec3& out, double r) {
     const double a = std::clamp(dot(l.direction, out) * scale - std::cos(l.outer_cone) * scale, 0.0, 1.0);
     k = a * a;
   }
-  // A luminaire (EXT_lights_ies): the profile's candela towards `out` in the node's frame, whose
-  // axes are X = up × Z, Y = up, Z = −direction (the extension's text; ies.h interpolates the web).
-  if (l.type == PunctualLight::Type::ies) {
-    const Vec3 z = l.direction * -1.0, x = cross(l.up, z);
-    k = l.profile ? l.profile->intensity({dot(out, x), dot(out, l.up), dot(out, z)}) : 0.0;
-  }
+  // A luminaire (EXT_lights_ies): the profile's candela towards `out` in the node's frame (scene.h's
+  // light_frame; ies.h interpolates the web).
+  if (l.type == PunctualLight::Type::ies) k = l.profile ? l.profile->intensity(light_frame(l, out)) : 0.0;
   if (l.range > 0) k *= std::clamp(1.0 - std::pow(r / l.range, 4.0), 0.0, 1.0);
   return l.intensity * k;
 }

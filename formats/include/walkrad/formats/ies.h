@@ -52,7 +52,7 @@ struct IesProfile {
   int lamps = 1;
   double lumens_per_lamp = -1;  // −1: absolute photometry
   double input_watts = 0;
-  std::string text;  // the file's bytes as read, set by the scene readers (written back by the glTF writer)
+  std::string text;  // the file's bytes as parsed (the glTF writer writes them back)
 
   // Candela towards photometric angles (degrees) in the file's own convention, by symmetry and
   // bilinear interpolation; 0 outside the measured range.
@@ -62,6 +62,9 @@ struct IesProfile {
   // The tilt multiplying factor for a luminaire tilted by `tilt_deg` from its measured position,
   // interpolated in the table (clamped at its ends); 1 without tilt data.
   double tilt_factor(double tilt_deg) const;
+  // The same for a luminaire aimed along `aim`, its photometric position aiming along `down` (the
+  // scene's gravity: glTF −Y, MGF −Z): its tilt is the angle between them.
+  double tilt_factor(const Vec3& aim, const Vec3& down) const;
   // Luminous flux, lm: ∫ intensity dΩ over the sphere (numerical, exact for the interpolation to
   // within 1e-4 relative).
   double flux() const;

@@ -103,6 +103,13 @@ struct PunctualLight {
   std::shared_ptr<const IesProfile> profile;  // ies: the photometric data (shared, never changed)
 };
 
+// `up` made orthogonal to the unit `direction` and unit (a light node's +Y under any transform); the
+// zero vector where it is (nearly) parallel to it.
+inline Vec3 orthogonal_up(const Vec3& direction, const Vec3& up) {
+  const Vec3 u = up - direction * dot(up, direction);
+  return length(u) > 1e-9 * length(up) ? normalize(u) : Vec3{};
+}
+
 // A world direction in a luminaire's own frame (ies.h): its node's X, Y and Z axes.
 inline Vec3 light_frame(const PunctualLight& l, const Vec3& world) {
   const Vec3 z = -l.direction, y = l.up, x = cross(y, z);
