@@ -96,7 +96,8 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   const Shaft shaft(h_[i].bounds, h_[j].bounds);
   const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
   std::vector<uint32_t> candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
-  const bool split = force || must_split || worth_splitting(i, j, !candidates.empty());
+  const size_t listed = compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j) : candidates.size();
+  const bool split = force || must_split || worth_splitting(i, j, listed > 0);
 
   if (split) {
     const bool si = splittable(i), sj = splittable(j);
@@ -122,7 +123,7 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   // Volumes count as one blocker: their transmittance varies smoothly, not all or nothing.
   size_t volumes = 0;
   for (uint32_t c : candidates) volumes += (c & kVolumeTags) != 0;
-  const size_t blockers = candidates.size() - volumes + (volumes > 0);
+  const size_t blockers = listed - volumes + (volumes > 0);
   int samples = s_.rays;
   if (blockers > 4) samples *= 2;
   if (blockers > 64) samples *= 2;
@@ -134,9 +135,9 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
 
 std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
                                 const std::vector<uint32_t>* parent) const {
+  if (compact())
+    return parent ? filter_compact_candidates(h_.tree(), shaft, *parent, ex_i, ex_j) : compact_candidates(h_.tree(), shaft, ex_i, ex_j);
   const VolumeVisibility* v = s_.volumes;
-  if (!v || !s_.visibility)
-    return parent ? filter_candidates(h_.tree(), shaft, *parent, ex_i, ex_j) : shaft_candidates(h_.tree(), shaft, ex_i, ex_j);
   const HNode& ri = h_[i];
   const HNode& sj = h_[j];
   const ClusterTree& tree = h_.tree();
@@ -160,14 +161,27 @@ std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& sha
   return filter_candidates(tree, shaft, out, ex_i, ex_j, tags);
 }
 
-void Solver::split_link(uint32_t i, uint32_t j, bool receiver) {
+std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
+  // A link evaluated without rays had no candidate (compact lists, visibility on): nor have its
+  // children, whose shafts lie inside its own.
+  if (compact() && s_.visibility && (l.rays & 1) == 0) return {};
+  const uint32_t j = l.source;
+  return occluders(i, j, Shaft(h_[i].bounds, h_[j].bounds), h_[i].cluster ? UINT32_MAX : h_[i].polygon,
+                   h_[j].cluster ? UINT32_MAX : h_[j].polygon, nullptr);
+}
+
+void Solver::split_link(uint32_t i, const Link& l, bool receiver) {
+  // The pair's candidates, searched in the tree once and filtered for each child (shaft.h: the
+  // children's shafts lie inside the pair's), not searched again from the root per child.
+  const uint32_t j = l.source;
+  const std::vector<uint32_t> candidates = link_candidates(i, l);
   const uint32_t end = receiver ? i : j;
   h_.subdivide(end);
   --stats_.links;
   for (uint32_t k = 0; k < h_[end].child_count; ++k) {
     const uint32_t c = h_.child(h_[end], k);
-    if (receiver) refine(c, j, nullptr);
-    else refine(i, c, nullptr);
+    if (receiver) refine(c, j, &candidates);
+    else refine(i, c, &candidates);
   }
 }
 
@@ -186,7 +200,7 @@ void Solver::refine_existing() {
     if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
       ++stats_.refinements;
       ++stats_.receiver_splits;
-      for (const Link& l : links) split_link(i, l.source, true);
+      for (const Link& l : links) split_link(i, l, true);
       continue;
     }
     // Each link: one that carries more than its share is refined again from here (refine splits it).
@@ -202,7 +216,8 @@ void Solver::refine_existing() {
       }
       if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
         --stats_.links;
-        refine(i, l.source, nullptr, true);
+        static const std::vector<uint32_t> kNone;
+        refine(i, l.source, compact() && s_.visibility && (l.rays & 1) == 0 ? &kNone : nullptr, true);  // as link_candidates
       } else {
         h_[i].links.push_back(l);
       }

@@ -146,7 +146,9 @@ class Solver {
   // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
   // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
   // rule accepts some volumes but another volume's polygons must block exactly is evaluated exactly
-  // throughout: the grid holds every volume, the solid scene none.
+  // throughout: the grid holds every volume, the solid scene none. Without volumes the lists are
+  // compact (shaft.h: a tree node wholly inside the shaft is one entry).
+  bool compact() const { return !s_.volumes || !s_.visibility; }
   std::vector<uint32_t> occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
                                   const std::vector<uint32_t>* parent) const;
 
@@ -154,8 +156,10 @@ class Solver {
   // children; links whose source or noise error exceeds a share of it get an end split.
   void refine_existing();
 
-  // Replaces link (i ← j) by links from the children of the receiver (receiver) or of the source.
-  void split_link(uint32_t i, uint32_t j, bool receiver);
+  // Replaces link l (to receiver i) by links from the children of the receiver (receiver) or of the source.
+  void split_link(uint32_t i, const Link& l, bool receiver);
+  // The candidate occluders of an existing link's shaft (none where it needed no rays).
+  std::vector<uint32_t> link_candidates(uint32_t i, const Link& l) const;
 
   // Form factors of the new links, in parallel: each link draws from its own random stream.
   void evaluate_pending(IterationStats& is);

@@ -81,6 +81,8 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
   }
   tree.nodes.reserve(2 * (n / b.max_leaf + 1));
   if (n > 0) b.build(0, n);
+  tree.slot.resize(n);
+  for (uint32_t i = 0; i < n; ++i) tree.slot[tree.polygons[i]] = i;
   return tree;
 }
 

@@ -69,17 +69,34 @@ bool Shaft::overlaps(const Bounds& box) const {
   return true;
 }
 
+bool Shaft::contains(const Bounds& box) const {
+  for (int k = 0; k < 3; ++k)
+    if (!(box.lo[k] > inner_lo_[k] && box.hi[k] < inner_hi_[k])) return false;  // a flat hull contains nothing
+  for (int i = 0; i < planes_; ++i) {
+    const Plane& p = plane_[i];
+    // The box's corner furthest out along n: inside if even it is.
+    const Vec3 outer(p.n.x >= 0 ? box.hi.x : box.lo.x, p.n.y >= 0 ? box.hi.y : box.lo.y, p.n.z >= 0 ? box.hi.z : box.lo.z);
+    if (!(dot(p.n, outer) < inner_d_[i])) return false;
+  }
+  return true;
+}
+
 namespace {
 
 // Depth-first from `start`, child 0 first: polygons come out in tree order. tags null: no volumes.
+// compact (without tags): a node wholly inside the shaft is one entry.
 void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_t exclude_a, uint32_t exclude_b,
-             const VolumeTags* tags, std::vector<uint32_t>& out) {
+             const VolumeTags* tags, std::vector<uint32_t>& out, bool compact = false) {
   std::vector<int32_t> stack = {start};
   while (!stack.empty()) {
     const int32_t index = stack.back();
     const ClusterNode& node = tree.nodes[size_t(index)];
     stack.pop_back();
     if (!shaft.overlaps(node.bounds)) continue;
+    if (compact && shaft.contains(node.bounds)) {
+      out.push_back(uint32_t(index) | kWholeNode);
+      continue;
+    }
     if (tags && tags->node[size_t(index)] && tags->see_through(uint32_t(index) | kVolumeNode)) {
       out.push_back(uint32_t(index) | kVolumeNode);
       continue;
@@ -97,7 +114,60 @@ void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_
   }
 }
 
+bool under(const ClusterTree& tree, const ClusterNode& node, uint32_t polygon) {
+  return polygon < tree.slot.size() && tree.slot[polygon] - node.first < node.count;
+}
+
 }  // namespace
+
+std::vector<uint32_t> compact_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b) {
+  std::vector<uint32_t> out;
+  if (!tree.nodes.empty()) collect(tree, shaft, 0, exclude_a, exclude_b, nullptr, out, true);
+  return out;
+}
+
+std::vector<uint32_t> filter_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                                uint32_t exclude_a, uint32_t exclude_b) {
+  std::vector<uint32_t> out;
+  for (uint32_t c : candidates) {
+    if (c & kWholeNode) {
+      const uint32_t k = c & ~kWholeNode;
+      if (shaft.contains(tree.nodes[k].bounds)) out.push_back(c);
+      else collect(tree, shaft, int32_t(k), exclude_a, exclude_b, nullptr, out, true);
+    } else if (c != exclude_a && c != exclude_b && shaft.overlaps(tree.polygon_bounds[c])) {
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+size_t candidate_count(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a, uint32_t exclude_b) {
+  size_t n = 0;
+  for (uint32_t c : candidates) {
+    if (!(c & kWholeNode)) {
+      ++n;
+      continue;
+    }
+    const ClusterNode& node = tree.nodes[c & ~kWholeNode];
+    n += node.count - under(tree, node, exclude_a) - (exclude_b != exclude_a && under(tree, node, exclude_b));
+  }
+  return n;
+}
+
+std::vector<uint32_t> expand_candidates(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a,
+                                        uint32_t exclude_b) {
+  std::vector<uint32_t> out;
+  for (uint32_t c : candidates) {
+    if (!(c & kWholeNode)) {
+      out.push_back(c);
+      continue;
+    }
+    const ClusterNode& node = tree.nodes[c & ~kWholeNode];
+    for (uint32_t i = node.first; i < node.first + node.count; ++i)
+      if (tree.polygons[i] != exclude_a && tree.polygons[i] != exclude_b) out.push_back(tree.polygons[i]);
+  }
+  return out;
+}
 
 std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b) {
   std::vector<uint32_t> out;

@@ -44,6 +44,52 @@ TEST(Shaft, IsConservativeAndCulls) {
   EXPECT_TRUE(shaft.overlaps(box({2.4, 1.9, 0.4}, {2.6, 2.1, 0.6})));
 }
 
+// A compact candidate list (whole tree nodes as one entry) stands for exactly the polygons the
+// plain search finds, in the same order, from the tree and filtered from a parent link's list, with
+// the ends' own polygons excluded; and it is shorter where clusters lie wholly inside the shaft.
+TEST(Shaft, CompactListsExpandToThePlainSearch) {
+  Scene scene;
+  Rng rng(11);
+  Vec3 group;
+  for (int k = 0; k < 3000; ++k) {  // 100 groups of 30 small quads in a 10 m cube, some flat on z = 0
+    if (k % 30 == 0) group = Vec3(10 * rng.uniform(), 10 * rng.uniform(), k % 90 ? 10 * rng.uniform() : 0.0);
+    const Vec3 o = group + Vec3(0.5 * rng.uniform(), 0.5 * rng.uniform(), group.z > 0 ? 0.5 * rng.uniform() : 0.0);
+    const double s = 0.02 + 0.05 * rng.uniform();
+    scene.polygons.push_back(quad(o, o + Vec3(s, 0, 0), o + Vec3(s, s, 0), o + Vec3(0, s, 0)));
+  }
+  const ClusterTree tree = build_cluster_tree(scene);
+  size_t entries = 0, polygons = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    auto random_box = [&](double size) {
+      const Vec3 lo(10 * rng.uniform(), 10 * rng.uniform(), trial % 4 ? 10 * rng.uniform() : 0.0);
+      return box(lo, lo + Vec3(size * rng.uniform(), size * rng.uniform(), trial % 4 ? size * rng.uniform() : 0.0));
+    };
+    const Bounds a = random_box(4), b = random_box(4);
+    const uint32_t ex_a = uint32_t(rng.uniform() * 3000), ex_b = trial % 2 ? UINT32_MAX : uint32_t(rng.uniform() * 3000);
+    const Shaft parent(a, b);
+    const std::vector<uint32_t> compact = compact_candidates(tree, parent, ex_a, ex_b);
+    const std::vector<uint32_t> plain = shaft_candidates(tree, parent, ex_a, ex_b);
+    ASSERT_EQ(expand_candidates(tree, compact, ex_a, ex_b), plain) << trial;
+    ASSERT_EQ(candidate_count(tree, compact, ex_a, ex_b), plain.size()) << trial;
+    entries += compact.size();
+    polygons += plain.size();
+    // A child link: a quarter of one end, its own polygon excluded as well.
+    Bounds child = a;
+    child.hi = a.lo + (a.hi - a.lo) * 0.5;
+    const Shaft inner(child, b);
+    const uint32_t ex_c = uint32_t(rng.uniform() * 3000);
+    const std::vector<uint32_t> filtered = filter_compact_candidates(tree, inner, compact, ex_c, ex_b);
+    std::vector<uint32_t> expected = shaft_candidates(tree, inner, ex_c, ex_b);
+    // The parent's exclusion holds below it (a child element keeps its parent's polygon).
+    expected.erase(std::remove(expected.begin(), expected.end(), ex_a), expected.end());
+    std::vector<uint32_t> got = expand_candidates(tree, filtered, ex_c, ex_b);
+    got.erase(std::remove(got.begin(), got.end(), ex_a), got.end());
+    ASSERT_EQ(got, expected) << trial;
+  }
+  EXPECT_GT(polygons, 10000u);
+  EXPECT_LT(entries * 2, polygons);  // whole groups as one entry
+}
+
 // A room of two halves split by a wall that stands on the floor and touches the ceiling; the light
 // is on one side. The dark side must stay dark: below 1e-4 of the lit side.
 TEST(LightLeak, WallOnTheFloorLetsNoLightThrough) {

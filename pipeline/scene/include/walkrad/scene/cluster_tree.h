@@ -28,6 +28,7 @@ struct ClusterTree {
   std::vector<ClusterNode> nodes;   // nodes[0] is the root
   std::vector<uint32_t> polygons;   // polygon indices, permuted so every node's are contiguous
   std::vector<Bounds> polygon_bounds;  // per polygon (by polygon index)
+  std::vector<uint32_t> slot;       // per polygon: its place in `polygons` (under node n iff in [first, first + count))
 };
 
 // max_leaf: polygons per leaf (at least 1).

@@ -20,6 +20,9 @@ class Shaft {
 
   // Conservative: false only if the box lies entirely outside the shaft.
   bool overlaps(const Bounds& box) const;
+  // True only if the box lies strictly inside the shaft less its margin, so that overlaps() holds
+  // for every box inside it.
+  bool contains(const Bounds& box) const;
   int plane_count() const { return planes_; }
 
  private:
@@ -45,6 +48,20 @@ std::vector<uint32_t> shaft_candidates(const ClusterTree& tree, const Shaft& sha
 // The subset of candidates (a parent link's list) that overlaps a child link's shaft.
 std::vector<uint32_t> filter_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
                                         uint32_t exclude_a, uint32_t exclude_b);
+
+// Compact candidate lists (no volumes), for the hierarchical solver, whose links' shafts nest: a tree
+// node wholly inside the shaft is one entry (its index with kWholeNode) standing for every polygon
+// below it, so a child link filters a cluster of thousands of polygons with one test where it is
+// still wholly inside, and opens it only where the shaft's side crosses it. Polygon entries are
+// exclude_a and exclude_b dropped; node entries keep them, and candidate_count() takes them off.
+// Expanded (expand_candidates), a compact list is exactly shaft_candidates()'s list, in the same order.
+constexpr uint32_t kWholeNode = 0x20000000u;
+std::vector<uint32_t> compact_candidates(const ClusterTree& tree, const Shaft& shaft, uint32_t exclude_a, uint32_t exclude_b);
+std::vector<uint32_t> filter_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                                uint32_t exclude_a, uint32_t exclude_b);
+size_t candidate_count(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a, uint32_t exclude_b);
+std::vector<uint32_t> expand_candidates(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a,
+                                        uint32_t exclude_b);
 
 // Volumetric visibility (volume_visibility.h): what lies in volume clusters and the multi-resolution
 // rule lets stand in as a medium is kept whole as one candidate, tagged: a ClusterTree node wholly in
