@@ -42,8 +42,12 @@ class DirectGather {
   // Irradiance at x (unit normal n) from the emitters in `from` and every punctual light. inward: a
   // unit direction in the surface towards its faces around x (zero inside them): shadow rays leave
   // from x moved off the surface and along it, so that from a vertex on a crease they do not start on
-  // the neighbouring wall's plane. rays_cast counts the shadow rays.
-  Vec3 at(const Vec3& x, const Vec3& n, const Vec3& inward, const EmitterRanges& from, uint64_t& rays_cast) const;
+  // the neighbouring wall's plane. rays_cast counts the shadow rays. An emitter is sampled at 4 × 4
+  // stratified points, and where they disagree (a penumbra) at penumbra² more: kVertexPenumbra for
+  // what a vertex shows, kTestPenumbra where the adaptive mesh only asks whether to split.
+  static constexpr int kVertexPenumbra = 32, kTestPenumbra = 8;
+  Vec3 at(const Vec3& x, const Vec3& n, const Vec3& inward, const EmitterRanges& from, uint64_t& rays_cast,
+          int penumbra = kVertexPenumbra) const;
 
  private:
   struct Emitter {
@@ -52,7 +56,8 @@ class DirectGather {
     uint32_t polygon;
   };
   EmitterRanges ranges_of(const HNode& source) const;
-  double visible_fraction(const Vec3& x, const Vec3& n, const Vec3& from, const Emitter& e, uint64_t& rays_cast) const;
+  double visible_fraction(const Vec3& x, const Vec3& n, const Vec3& from, const Emitter& e, int penumbra,
+                          uint64_t& rays_cast) const;
 
   const Hierarchy& h_;
   const std::vector<PunctualLight>* lights_;
