@@ -114,6 +114,8 @@ class Solver {
 
   // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
   static constexpr int kHiddenRecast = 8;
+  // Refinement stops after a round that adds fewer than 1 / kLastRoundShare of the links.
+  static constexpr size_t kLastRoundShare = 100;
 
   // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
   static constexpr double kClusterCosine = 0.25;
