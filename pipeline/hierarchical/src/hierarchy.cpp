@@ -11,8 +11,11 @@ namespace walkrad {
 Hierarchy::Hierarchy(const Scene& scene, const ClusterTree& tree, bool sample_textures)
     : scene_(scene), tree_(tree), sample_textures_(sample_textures) {
   area_prefix_.resize(tree.polygons.size() + 1, 0.0);
-  for (size_t k = 0; k < tree.polygons.size(); ++k)
+  normals_.resize(tree.polygons.size());
+  for (size_t k = 0; k < tree.polygons.size(); ++k) {
     area_prefix_[k + 1] = area_prefix_[k] + polygon_area(scene.polygons[tree.polygons[k]]);
+    normals_[k] = polygon_normal(scene.polygons[tree.polygons[k]]);
+  }
   nodes_.reserve(4 * tree.nodes.size() + scene.polygons.size());
   polygon_root_.assign(scene.polygons.size(), UINT32_MAX);
   if (!tree.nodes.empty()) add_cluster(0, -1);
@@ -193,7 +196,7 @@ void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point
   const size_t k = std::min<size_t>(size_t(it - area_prefix_.begin()) - 1, t.first + t.count - 1);
   const Polygon& p = scene_.polygons[tree_.polygons[k]];
   point = sample_polygon(p, u, v);
-  normal = polygon_normal(p);
+  normal = normals_[k];
   if (child) {
     for (uint32_t c = 0; c < n.child_count; ++c) {
       const HNode& kid = nodes_[children_[n.child_begin + c]];

@@ -95,8 +95,14 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   // Candidates between the two: the parent's list filtered by this pair's shaft.
   const Shaft shaft(h_[i].bounds, h_[j].bounds);
   const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
-  std::vector<uint32_t> candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
-  const size_t listed = compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j) : candidates.size();
+  // With compact lists from a parent, the list itself is built only for a pair that splits again;
+  // a pair that becomes a link needs only its count, up to the thresholds below.
+  const bool lazy = compact() && parent;
+  std::vector<uint32_t> candidates;
+  if (!lazy) candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
+  const size_t listed = lazy ? count_compact_candidates(h_.tree(), shaft, *parent, ex_i, ex_j, kManyBlockers + 1)
+                        : compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j)
+                                    : candidates.size();
   const bool split = force || must_split || worth_splitting(i, j, listed > 0);
 
   if (split) {
@@ -108,6 +114,7 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
           (split_receiver ? h_[j].cluster : h_[i].cluster))
         split_receiver = !split_receiver;  // split the cluster end first
       const uint32_t end = split_receiver ? i : j;
+      if (lazy) candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
       h_.subdivide(end);
       ++stats_.refinements;
       const uint32_t count = h_[end].child_count;
@@ -125,8 +132,8 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   for (uint32_t c : candidates) volumes += (c & kVolumeTags) != 0;
   const size_t blockers = listed - volumes + (volumes > 0);
   int samples = s_.rays;
-  if (blockers > 4) samples *= 2;
-  if (blockers > 64) samples *= 2;
+  if (blockers > kSomeBlockers) samples *= 2;
+  if (blockers > kManyBlockers) samples *= 2;
   // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
   if (s_.checkpoint && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
     s_.checkpoint("refinement", 2 * pending_.capacity() * sizeof(Pending));

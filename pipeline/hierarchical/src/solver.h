@@ -114,6 +114,8 @@ class Solver {
 
   // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
   static constexpr int kHiddenRecast = 8;
+  // A link's rays double past this many candidate blockers in its shaft, and double again past kMany.
+  static constexpr size_t kSomeBlockers = 4, kManyBlockers = 64;
   // Refinement stops after a round that adds fewer than 1 / kLastRoundShare of the links.
   static constexpr size_t kLastRoundShare = 100;
 

@@ -154,6 +154,40 @@ size_t candidate_count(const ClusterTree& tree, const std::vector<uint32_t>& can
   return n;
 }
 
+size_t count_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                uint32_t exclude_a, uint32_t exclude_b, size_t limit) {
+  size_t n = 0;
+  auto whole = [&](const ClusterNode& node) {
+    return node.count - under(tree, node, exclude_a) - (exclude_b != exclude_a && under(tree, node, exclude_b));
+  };
+  std::vector<int32_t> stack;
+  for (uint32_t c : candidates) {
+    if (n >= limit) break;
+    if (!(c & kWholeNode)) {
+      n += c != exclude_a && c != exclude_b && shaft.overlaps(tree.polygon_bounds[c]);
+      continue;
+    }
+    stack.assign(1, int32_t(c & ~kWholeNode));
+    while (!stack.empty() && n < limit) {  // as collect(), compact, counting
+      const ClusterNode& node = tree.nodes[size_t(stack.back())];
+      stack.pop_back();
+      if (!shaft.overlaps(node.bounds)) continue;
+      if (shaft.contains(node.bounds)) {
+        n += whole(node);
+      } else if (!node.leaf()) {
+        stack.push_back(node.child[1]);
+        stack.push_back(node.child[0]);
+      } else {
+        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+          const uint32_t p = tree.polygons[i];
+          n += p != exclude_a && p != exclude_b && shaft.overlaps(tree.polygon_bounds[p]);
+        }
+      }
+    }
+  }
+  return std::min(n, limit);
+}
+
 std::vector<uint32_t> expand_candidates(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a,
                                         uint32_t exclude_b) {
   std::vector<uint32_t> out;

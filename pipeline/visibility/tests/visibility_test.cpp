@@ -79,6 +79,9 @@ TEST(Shaft, CompactListsExpandToThePlainSearch) {
     const Shaft inner(child, b);
     const uint32_t ex_c = uint32_t(rng.uniform() * 3000);
     const std::vector<uint32_t> filtered = filter_compact_candidates(tree, inner, compact, ex_c, ex_b);
+    for (const size_t limit : {size_t(1), size_t(5), size_t(65), size_t(1) << 30})  // counted without the list
+      ASSERT_EQ(count_compact_candidates(tree, inner, compact, ex_c, ex_b, limit),
+                std::min(limit, candidate_count(tree, filtered, ex_c, ex_b))) << trial;
     std::vector<uint32_t> expected = shaft_candidates(tree, inner, ex_c, ex_b);
     // The parent's exclusion holds below it (a child element keeps its parent's polygon).
     expected.erase(std::remove(expected.begin(), expected.end(), ex_a), expected.end());

@@ -126,6 +126,7 @@ class Hierarchy {
   std::vector<HNode> nodes_;
   std::vector<uint32_t> children_;
   std::vector<double> area_prefix_;  // prefix sums of polygon areas in ClusterTree::polygons order
+  std::vector<Vec3> normals_;        // polygon normals in the same order (a cluster's samples take them)
   std::vector<ViewHit> hits_;
   std::vector<uint32_t> polygon_root_;        // grouped by element, each element's hits contiguous
   size_t element_count_ = 0;

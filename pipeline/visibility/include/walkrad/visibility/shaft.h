@@ -60,6 +60,10 @@ std::vector<uint32_t> compact_candidates(const ClusterTree& tree, const Shaft& s
 std::vector<uint32_t> filter_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
                                                 uint32_t exclude_a, uint32_t exclude_b);
 size_t candidate_count(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a, uint32_t exclude_b);
+// min(limit, candidate_count(filter_compact_candidates(...))) without building the list: a link that
+// is not split further needs only whether it has 0, more than 4 or more than 64 candidates.
+size_t count_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
+                                uint32_t exclude_a, uint32_t exclude_b, size_t limit);
 std::vector<uint32_t> expand_candidates(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a,
                                         uint32_t exclude_b);
 
