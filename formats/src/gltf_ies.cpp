@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "walkrad/formats/error.h"
@@ -20,10 +19,9 @@ namespace {
 std::string uri_path(const std::string& uri) {
   std::string out;
   for (size_t i = 0; i < uri.size(); ++i) {
-    unsigned value = 0;
-    if (uri[i] == '%' && i + 2 < uri.size() && std::sscanf(uri.c_str() + i + 1, "%2x", &value) == 1 &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) && std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += char(value);
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
       i += 2;
     } else {
       out += uri[i];

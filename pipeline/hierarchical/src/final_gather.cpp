@@ -21,8 +21,8 @@ namespace walkrad {
 namespace {
 
 // Stratified points over the emitter: a first pass, and a finer one where the first disagrees (at most
-// kFinest a side). In a 5 cm penumbra (test ContactShadow) 8, 16 and 32 a side at the vertices left
-// 3.1, 2.7 and 2.4% RMS: a shadow edge crosses about m of the m² strata, each a coin toss.
+// kFinest a side). In a 5 cm penumbra (test ContactShadow) 8 and 16 a side left 3.1 and 2.7% RMS, 32
+// at the vertices 2.4%: a shadow edge crosses about m of the m² strata, each a coin toss.
 constexpr int kFirst = 4, kFinest = DirectGather::kVertexPenumbra;
 
 // The interpolation error allowed at a gathered leaf, as a share of the solution's tolerance (e × what

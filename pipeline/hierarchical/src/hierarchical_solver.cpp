@@ -90,7 +90,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       break;
     }
     // A round that added under 1% of the links is the last: each later round costs a pass over every
-    // link and its sweeps for a few more (the Cornell box: 5 rounds for 2% of its links).
+    // link and its sweeps for a few more (the Cornell box: 4 rounds for 1.8% of its links).
     const bool last = settled || (it > 1 && is.new_links * kLastRoundShare < stats_.links);
     const int sweeps = last ? 1000 : s_.sweeps;
     for (int sweep = 0; sweep < sweeps; ++sweep) {

@@ -168,10 +168,13 @@ std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& sha
   return filter_candidates(tree, shaft, out, ex_i, ex_j, tags);
 }
 
+bool Solver::ray_free(const Link& l) const {
+  // Compact lists and visibility on: rays were cast exactly where the shaft held a candidate.
+  return compact() && s_.visibility && (l.rays & 1) == 0;
+}
+
 std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
-  // A link evaluated without rays had no candidate (compact lists, visibility on): nor have its
-  // children, whose shafts lie inside its own.
-  if (compact() && s_.visibility && (l.rays & 1) == 0) return {};
+  if (ray_free(l)) return {};
   const uint32_t j = l.source;
   return occluders(i, j, Shaft(h_[i].bounds, h_[j].bounds), h_[i].cluster ? UINT32_MAX : h_[i].polygon,
                    h_[j].cluster ? UINT32_MAX : h_[j].polygon, nullptr);
@@ -224,7 +227,7 @@ void Solver::refine_existing() {
       if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
         --stats_.links;
         static const std::vector<uint32_t> kNone;
-        refine(i, l.source, compact() && s_.visibility && (l.rays & 1) == 0 ? &kNone : nullptr, true);  // as link_candidates
+        refine(i, l.source, ray_free(l) ? &kNone : nullptr, true);  // searched in refine otherwise
       } else {
         h_[i].links.push_back(l);
       }

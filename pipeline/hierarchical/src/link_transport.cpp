@@ -260,7 +260,7 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
     HNode& n = h.nodes()[k];
     n.balanced = false;  // also on nodes that were leaves in an earlier round
     if (!is_leaf_element(n)) continue;
-    n.balanced = raw_rows[k] >= kMinRaw && raw_rows[k] <= kMaxRaw && raw_columns[k] >= kMinRaw && raw_columns[k] <= kMaxRaw;
+    n.balanced = scalable_row(raw_rows[k]) && scalable_row(raw_columns[k]);
     if (!n.balanced) {
       n.send = n.receive = 1.0;
       ++stats.unbalanced;
@@ -285,6 +285,8 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
   return stats;
 }
 
+bool scalable_row(double raw_row) { return raw_row >= kMinRaw && raw_row <= kMaxRaw; }
+
 uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row) {
   const auto one = [](const HNode&) { return 1.0; };
   const std::vector<double> raw = row_sums(h, one);
@@ -295,7 +297,7 @@ uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row) {
     n.balanced = false;  // also on nodes that were leaves in an earlier round
     if (!is_leaf_element(n)) continue;
     n.send = 1.0;
-    n.balanced = raw[k] >= kMinRaw && raw[k] <= kMaxRaw;
+    n.balanced = scalable_row(raw[k]);
     n.receive = n.balanced ? std::clamp(1.0 / raw[k], kMinFactor, kMaxFactor) : 1.0;
     left += !n.balanced;
     area += n.area;

@@ -145,15 +145,15 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
     H += clusters_.sent(s.source, gathered) * f;
     row += f;
   }
-  // Gathered: the links' direct light is left for the gather's exact D. The leaf's receive factor (a
-  // closed scene's rows scaled to 1: the part of the hemisphere its links miss, filled at the mean of
-  // what they see) scales the reflected light alone: the emitters' links are not what the links miss
-  // (office-floor's direct-only bake: the gather agrees with the unscaled links to 0.1%).
-  // In a closed scene (rows scaled) a gathered vertex is scaled by its own row, not the leaf's: the
-  // near sources' form factors are exact at the point, and the leaf's factor corrects the leaf's
-  // links, whose quadrature overfills rows beside close geometry (a floor leaf 7 cm from a box: raw
-  // row 1.24, at the vertex 1.015) and would darken every source to pay for the near ones.
-  if (gathered && n.balanced && row > 0.25 && row < 4) return n.emission + mul(n.rho, H / row);
+  // Gathered: the links' direct light is left for the gather's exact D, and a closed scene's row
+  // scaling (the part of the hemisphere the links miss, filled at the mean of what they see) scales
+  // the reflected light alone: the emitters' links are not what the links miss (office-floor's
+  // direct-only bake: the gather agrees with the unscaled links to 0.1%). The vertex is scaled by its
+  // own row, not by its leaf's receive factor: its near sources' form factors are exact at the point,
+  // while the leaf's factor corrects the leaf's links, whose quadrature overfills rows beside close
+  // geometry (a floor leaf 7 cm from a box: raw row 1.24, at the vertex 1.015) and would darken every
+  // source to pay for the near ones.
+  if (gathered && n.balanced && scalable_row(row)) return n.emission + mul(n.rho, H / row);
   if (gathered) return n.emission + mul(n.rho, leaf_irradiance(n, H, row));
   uint64_t rays = 0;
   const Vec3 D = clusters_.lights() ? point_irradiance(x, n.normal, *clusters_.lights(), clusters_.rays(), rays) : n.D;

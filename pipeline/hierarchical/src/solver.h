@@ -162,7 +162,10 @@ class Solver {
 
   // Replaces link l (to receiver i) by links from the children of the receiver (receiver) or of the source.
   void split_link(uint32_t i, const Link& l, bool receiver);
-  // The candidate occluders of an existing link's shaft (none where it needed no rays).
+  // An existing link that needed no rays had no candidate occluder, nor have its children, whose
+  // shafts lie inside its own.
+  bool ray_free(const Link& l) const;
+  // The candidate occluders of an existing link's shaft (none where it is ray-free).
   std::vector<uint32_t> link_candidates(uint32_t i, const Link& l) const;
 
   // Form factors of the new links, in parallel: each link draws from its own random stream.

@@ -83,10 +83,12 @@ bool Shaft::contains(const Bounds& box) const {
 
 namespace {
 
-// Depth-first from `start`, child 0 first: polygons come out in tree order. tags null: no volumes.
-// compact (without tags): a node wholly inside the shaft is one entry.
-void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_t exclude_a, uint32_t exclude_b,
-             const VolumeTags* tags, std::vector<uint32_t>& out, bool compact = false) {
+// Depth-first from `start`, child 0 first: entries come out in tree order, each handed to emit, which
+// returns false to stop the walk (then so does this). tags null: no volumes. compact (without tags):
+// a node wholly inside the shaft is one entry.
+template <class Emit>
+bool descend(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_t exclude_a, uint32_t exclude_b,
+             const VolumeTags* tags, bool compact, Emit&& emit) {
   std::vector<int32_t> stack = {start};
   while (!stack.empty()) {
     const int32_t index = stack.back();
@@ -94,11 +96,11 @@ void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_
     stack.pop_back();
     if (!shaft.overlaps(node.bounds)) continue;
     if (compact && shaft.contains(node.bounds)) {
-      out.push_back(uint32_t(index) | kWholeNode);
+      if (!emit(uint32_t(index) | kWholeNode)) return false;
       continue;
     }
     if (tags && tags->node[size_t(index)] && tags->see_through(uint32_t(index) | kVolumeNode)) {
-      out.push_back(uint32_t(index) | kVolumeNode);
+      if (!emit(uint32_t(index) | kVolumeNode)) return false;
       continue;
     }
     if (!node.leaf()) {
@@ -109,13 +111,44 @@ void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_
     for (uint32_t i = node.first; i < node.first + node.count; ++i) {
       const uint32_t p = tree.polygons[i];
       if (p == exclude_a || p == exclude_b || !shaft.overlaps(tree.polygon_bounds[p])) continue;
-      out.push_back(tags && tags->polygon[p] && tags->see_through(p | kVolumePolygon) ? p | kVolumePolygon : p);
+      if (!emit(tags && tags->polygon[p] && tags->see_through(p | kVolumePolygon) ? p | kVolumePolygon : p)) return false;
+    }
+  }
+  return true;
+}
+
+void collect(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_t exclude_a, uint32_t exclude_b,
+             const VolumeTags* tags, std::vector<uint32_t>& out, bool compact = false) {
+  descend(tree, shaft, start, exclude_a, exclude_b, tags, compact, [&](uint32_t entry) {
+    out.push_back(entry);
+    return true;
+  });
+}
+
+// A parent's compact list filtered by a child's shaft, each entry handed to emit (false: stop).
+template <class Emit>
+void filter_compact(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates, uint32_t exclude_a,
+                    uint32_t exclude_b, Emit&& emit) {
+  for (uint32_t c : candidates) {
+    if (c & kWholeNode) {
+      const uint32_t k = c & ~kWholeNode;
+      if (shaft.contains(tree.nodes[k].bounds) ? !emit(c) : !descend(tree, shaft, int32_t(k), exclude_a, exclude_b, nullptr, true, emit))
+        return;
+    } else if (c != exclude_a && c != exclude_b && shaft.overlaps(tree.polygon_bounds[c]) && !emit(c)) {
+      return;
     }
   }
 }
 
 bool under(const ClusterTree& tree, const ClusterNode& node, uint32_t polygon) {
   return polygon < tree.slot.size() && tree.slot[polygon] - node.first < node.count;
+}
+
+// The polygons one compact entry stands for, less the two ends' own.
+size_t entry_count(const ClusterTree& tree, uint32_t entry, uint32_t exclude_a, uint32_t exclude_b) {
+  if (!(entry & kWholeNode)) return 1;
+  const ClusterNode& node = tree.nodes[entry & ~kWholeNode];
+  return node.count - under(tree, node, exclude_a) - (exclude_b != exclude_a && under(tree, node, exclude_b));
 }
 
 }  // namespace
@@ -129,62 +162,27 @@ std::vector<uint32_t> compact_candidates(const ClusterTree& tree, const Shaft& s
 std::vector<uint32_t> filter_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
                                                 uint32_t exclude_a, uint32_t exclude_b) {
   std::vector<uint32_t> out;
-  for (uint32_t c : candidates) {
-    if (c & kWholeNode) {
-      const uint32_t k = c & ~kWholeNode;
-      if (shaft.contains(tree.nodes[k].bounds)) out.push_back(c);
-      else collect(tree, shaft, int32_t(k), exclude_a, exclude_b, nullptr, out, true);
-    } else if (c != exclude_a && c != exclude_b && shaft.overlaps(tree.polygon_bounds[c])) {
-      out.push_back(c);
-    }
-  }
+  filter_compact(tree, shaft, candidates, exclude_a, exclude_b, [&](uint32_t entry) {
+    out.push_back(entry);
+    return true;
+  });
   return out;
 }
 
 size_t candidate_count(const ClusterTree& tree, const std::vector<uint32_t>& candidates, uint32_t exclude_a, uint32_t exclude_b) {
   size_t n = 0;
-  for (uint32_t c : candidates) {
-    if (!(c & kWholeNode)) {
-      ++n;
-      continue;
-    }
-    const ClusterNode& node = tree.nodes[c & ~kWholeNode];
-    n += node.count - under(tree, node, exclude_a) - (exclude_b != exclude_a && under(tree, node, exclude_b));
-  }
+  for (uint32_t c : candidates) n += entry_count(tree, c, exclude_a, exclude_b);
   return n;
 }
 
 size_t count_compact_candidates(const ClusterTree& tree, const Shaft& shaft, const std::vector<uint32_t>& candidates,
                                 uint32_t exclude_a, uint32_t exclude_b, size_t limit) {
   size_t n = 0;
-  auto whole = [&](const ClusterNode& node) {
-    return node.count - under(tree, node, exclude_a) - (exclude_b != exclude_a && under(tree, node, exclude_b));
-  };
-  std::vector<int32_t> stack;
-  for (uint32_t c : candidates) {
-    if (n >= limit) break;
-    if (!(c & kWholeNode)) {
-      n += c != exclude_a && c != exclude_b && shaft.overlaps(tree.polygon_bounds[c]);
-      continue;
-    }
-    stack.assign(1, int32_t(c & ~kWholeNode));
-    while (!stack.empty() && n < limit) {  // as collect(), compact, counting
-      const ClusterNode& node = tree.nodes[size_t(stack.back())];
-      stack.pop_back();
-      if (!shaft.overlaps(node.bounds)) continue;
-      if (shaft.contains(node.bounds)) {
-        n += whole(node);
-      } else if (!node.leaf()) {
-        stack.push_back(node.child[1]);
-        stack.push_back(node.child[0]);
-      } else {
-        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-          const uint32_t p = tree.polygons[i];
-          n += p != exclude_a && p != exclude_b && shaft.overlaps(tree.polygon_bounds[p]);
-        }
-      }
-    }
-  }
+  if (limit == 0) return 0;
+  filter_compact(tree, shaft, candidates, exclude_a, exclude_b, [&](uint32_t entry) {
+    n += entry_count(tree, entry, exclude_a, exclude_b);
+    return n < limit;
+  });
   return std::min(n, limit);
 }
 

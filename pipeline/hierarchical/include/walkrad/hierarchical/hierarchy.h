@@ -126,7 +126,9 @@ class Hierarchy {
   std::vector<HNode> nodes_;
   std::vector<uint32_t> children_;
   std::vector<double> area_prefix_;  // prefix sums of polygon areas in ClusterTree::polygons order
-  std::vector<Vec3> normals_;        // polygon normals in the same order (a cluster's samples take them)
+  // Polygon normals in the same order, for a cluster's samples. Each equals its polygon's root
+  // element's normal, but read here beside area_prefix_: through polygon_root_ office3 bakes 3% slower.
+  std::vector<Vec3> normals_;
   std::vector<ViewHit> hits_;
   std::vector<uint32_t> polygon_root_;        // grouped by element, each element's hits contiguous
   size_t element_count_ = 0;

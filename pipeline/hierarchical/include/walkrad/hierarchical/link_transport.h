@@ -35,6 +35,10 @@ inline bool is_leaf_element(const HNode& n) { return !n.cluster && n.child_count
 // times its receive factor, scaled back above kMaxRowSum. clamped: set when scaled back.
 Vec3 leaf_irradiance(const HNode& leaf, const Vec3& H, double row_sum, bool* clamped = nullptr);
 
+// Whether a closed scene's leaf with this unscaled row sum is scaled to 1 (rows only: its receive factor
+// is 1 / the sum): within [1/4, 4]. Outside it the leaf is a hidden or coincident piece, left as it is.
+bool scalable_row(double raw_row);
+
 // Each node's area mean of its leaf elements' emission as they send it (E × send): the part of Bt that
 // is the sources' own emission, which the final gather takes at the vertices instead (final_gather.h).
 std::vector<Vec3> emitted_as_sent(const Hierarchy& h);
