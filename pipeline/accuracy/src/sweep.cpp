@@ -48,6 +48,7 @@ struct Run {
 std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
   std::vector<Run> runs;
   for (const std::string& method : s.methods) {
+    if (method == "none") continue;  // only the --measure folders
     if (method == "classic" || method == "southwell" || method == "hemicube") {
       std::vector<double> sizes = s.element_sizes;
       if (sizes.empty())
@@ -72,7 +73,7 @@ std::vector<Run> plan_runs(const SweepSettings& s, double diagonal) {
         }
       }
     } else {
-      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, southwell, hemicube, hierarchical, importance)",
+      throw InputError("--methods", "", "unknown method '" + method + "' (available: classic, southwell, hemicube, hierarchical, importance, none)",
                        kExitBadArguments);
     }
   }

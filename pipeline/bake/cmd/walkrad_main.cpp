@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("-o,--output", ss.output, "output folder (default: <scene name>.sweep)");
   sweep_cmd->add_option("--methods", ss.methods,
                         "classic (Gauss-Seidel), southwell (classic, progressive refinement), hemicube (classic, hemicube form "
-                        "factors), hierarchical (view-independent), importance")
+                        "factors), hierarchical (view-independent), importance; none: only the --measure folders")
       ->delimiter(',')->capture_default_str();
   sweep_cmd->add_option("--without", ss.without,
                         "also bake each hierarchical run with this effect off (e.g. gather): what the effect buys")->delimiter(',');

@@ -111,6 +111,18 @@ double Solver::reflected_sent(uint32_t source) const {
   return j < emitted_.size() ? std::max(0.0, all - double(emitted_[j])) : all;
 }
 
+Vec3 Solver::link_sent(const Link& l) const {
+  Vec3 b;
+  for_each_part(h_, l, [&](uint32_t node, double w) { b += sent(h_[node]) * w; });
+  return b;
+}
+
+double Solver::reflected_sent(const Link& l) const {
+  double b = 0;
+  for_each_part(h_, l, [&](uint32_t node, double w) { b += reflected_sent(node) * w; });
+  return b;
+}
+
 void Solver::measure_variation() {
   measure_spread();
   variation_.assign(h_.nodes().size(), 0.0f);
@@ -125,7 +137,7 @@ void Solver::measure_variation() {
       const bool gather = gathered(uint32_t(i));
       double H = 0, Hc[4] = {}, G = 0, Gc[4] = {};
       for (const Link& l : n.links) {
-        const double b = luminance(sent(h_[l.source])) * l.F, g = gather ? reflected_sent(l.source) * l.F : b;
+        const double b = luminance(link_sent(l)) * l.F, g = gather ? reflected_sent(l) * l.F : b;
         H += b;
         G += g;
         for (uint32_t k = 0; k < kids; ++k) {
@@ -221,7 +233,7 @@ void Solver::measure_left_error() {
     const double rho = luminance(n.rho);
     const bool gather = gathered(i);
     for (const Link& l : n.links) {
-      const double carried = gather ? reflected_sent(l.source) : luminance(sent(h_[l.source]));
+      const double carried = gather ? reflected_sent(l) : luminance(link_sent(l));
       const double source = source_error(n, l), noise = rho * carried * l.sigma;
       sq += source * source + noise * noise;
     }

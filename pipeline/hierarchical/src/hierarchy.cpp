@@ -105,6 +105,15 @@ uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal
   return 3;
 }
 
+uint32_t sample_quadrant(const Polygon& shape, double u, double v) {
+  if (shape.count == 4) return u < 0.5 ? (v < 0.5 ? 0 : 3) : (v < 0.5 ? 1 : 2);
+  const double su = std::sqrt(u);  // sample_polygon's barycentric weights: 1 − su, su (1 − v), su v
+  if (su < 0.5) return 0;
+  if (su * (1 - v) > 0.5) return 1;
+  if (su * v > 0.5) return 2;
+  return 3;
+}
+
 std::array<Polygon, 4> split_element(const Polygon& s) {
   auto piece = [&](std::initializer_list<Vec3> v) {
     Polygon p = s;
@@ -237,6 +246,24 @@ void normalize_shares(const Hierarchy& h, uint32_t receiver, Link& link) {
     return;
   }
   for (uint32_t c = 0; c < count; ++c) link.share[c] = float(std::max(0.0f, link.share[c]) * total / weighted);
+}
+
+// docs/performance.md gives the memory per link.
+static_assert(sizeof(Link) == 48, "a link's size changed: update docs/performance.md");
+
+std::array<uint16_t, 4> seen_weights(const double* visible_kernel, const double* area_share, uint32_t count, double within) {
+  std::array<uint16_t, 4> out = {0, 0, 0, 0};
+  double largest = 0, total = 0;
+  for (uint32_t c = 0; c < count; ++c) {
+    largest = std::max(largest, visible_kernel[c]);
+    total += visible_kernel[c];
+  }
+  if (!(largest > 0)) return out;
+  double apart = 0;
+  for (uint32_t c = 0; c < count; ++c) apart += std::fabs(visible_kernel[c] / total - area_share[c]);
+  if (apart < within) return out;
+  for (uint32_t c = 0; c < count; ++c) out[c] = uint16_t(std::lround(65535.0 * visible_kernel[c] / largest));
+  return out;
 }
 
 uint32_t child_slot(const Hierarchy& h, uint32_t node) {

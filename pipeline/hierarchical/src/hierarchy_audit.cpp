@@ -9,6 +9,13 @@ namespace walkrad {
 
 namespace {
 
+// What a link takes from its source's Bt (Link::seen).
+Vec3 link_bt(const Hierarchy& h, const Link& l) {
+  Vec3 b;
+  for_each_part(h, l, [&](uint32_t node, double w) { b += h[node].Bt * w; });
+  return b;
+}
+
 // The hierarchy's transfer as the solver runs it: irradiance gathered from what sources send (Bt), and
 // what escapes counted where it leaves, per leaf: B A (1 − the fraction its links and its ancestors'
 // carry away, times its send factor), so that the balance closes whatever the links' distribution.
@@ -17,9 +24,9 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, DirectionalIrradiance
   const HNode& n = h[i];
   carried += sent[i];
   if (n.cluster)
-    for (const Link& l : n.links) cube.add(n, link_direction(n, h[l.source]), l.F, h[l.source].Bt);
+    for (const Link& l : n.links) cube.add(n, link_direction(n, h[l.source]), l.F, link_bt(h, l));
   if (n.child_count == 0) {
-    for (const Link& l : n.links) down += h[l.source].Bt * l.F;
+    for (const Link& l : n.links) down += link_bt(h, l) * l.F;
     if (n.cluster) return;
     AuditElement e{n.area, n.rho, n.emission, n.B, down * n.receive + n.D, carried * n.send, n.D};
     if (twins && (*twins)[n.polygon] != kNoTwin) {  // what passes through from the other side
@@ -34,7 +41,7 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, DirectionalIrradiance
     Vec3 pushed = down;
     if (n.cluster && !child.cluster) pushed += cube.at(child.normal);
     if (!n.cluster && k < 4)
-      for (const Link& l : n.links) pushed += h[l.source].Bt * (l.F * double(l.share[k]));
+      for (const Link& l : n.links) pushed += link_bt(h, l) * (l.F * double(l.share[k]));
     audit_node(h, h.child(n, k), pushed, child.cluster ? cube : DirectionalIrradiance{}, carried, sent, twins, audit);
   }
 }
@@ -57,7 +64,7 @@ EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twi
         for (uint32_t c = 0; c < p.child_count && c < 4; ++c)
           taken += h[h.child(p, c)].area * double(l.share[c]) * receive[h.child(p, c)];
       }
-      sent[l.source] += l.F * taken / h[l.source].area;
+      for_each_part(h, l, [&](uint32_t node, double w) { sent[node] += l.F * taken * w / h[node].area; });  // Link::seen
     }
   }
   if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, DirectionalIrradiance{}, 0.0, sent, twins, audit);

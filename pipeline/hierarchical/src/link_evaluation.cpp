@@ -59,6 +59,7 @@ void Solver::evaluate_pending(IterationStats& is) {
     if (p.F > 0 || p.sigma > 0) {  // a wholly hidden link stays while it may still see something
       Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)),
              uint16_t(std::min(p.samples, 65535))};
+      l.seen = p.seen;
       normalize_shares(h_, p.receiver, l);
       h_[p.receiver].links.push_back(l);
       ++stats_.links;
@@ -123,8 +124,11 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   const int per_child = p.need_rays || p.volume ? std::max(1, p.samples / 4) : 0;
   std::vector<double>& kernel = kernel_scratch_;
   kernel.clear();
+  std::vector<uint8_t>& quadrant = quadrant_scratch_;  // of each sample's source point
+  quadrant.clear();
   segments.clear();
   double area[4], unoccluded[4];
+  double seen[4] = {0, 0, 0, 0};  // the visible kernel by the source's quadrant (Link::seen)
   for (int c = 0; c < 4; ++c) {
     area[c] = polygon_area(kids[c]);
     unoccluded[c] = 0;
@@ -132,9 +136,11 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
       if (dot(q.position - sj.shape.v[0], sj.normal) > 0) unoccluded[c] += q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
     for (int k = 0; k < per_child; ++k) {
       const Vec3 x = sample_polygon(kids[c], rng.uniform(), rng.uniform());
-      const Vec3 y = sample_polygon(sj.shape, rng.uniform(), rng.uniform());
+      const double u = rng.uniform(), v = rng.uniform();
+      const Vec3 y = sample_polygon(sj.shape, u, v);
       segments.push_back({x + ri.normal * offset, y + sj.normal * offset});
       kernel.push_back(sj.area / kPi * point_kernel(x, ri.normal, y, sj.normal));
+      quadrant.push_back(uint8_t(sample_quadrant(sj.shape, u, v)));
     }
   }
   visibility(p, segments, visible);
@@ -147,6 +153,7 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
       occluded += K * (1.0 - v);
       occluded2 += K * K * (1.0 - v) * (1.0 - v);
       open += K * v;
+      seen[quadrant[size_t(c * per_child + k)]] += area[c] * K * v;  // each receiver quadrant by its area
       hidden += v == 0.0;
     }
     const double n = double(std::max(1, per_child));
@@ -172,6 +179,12 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
     p.sigma = p.open / float(segments.size());
   }
   p.share = shares(Fc, sigma_c, 4, p.F);
+  if (per_child > 0 && p.F > 0) {  // where rays were cast
+    const std::array<Polygon, 4> parts = split_element(sj.shape);
+    double area_share[4];
+    for (int c = 0; c < 4; ++c) area_share[c] = polygon_area(parts[size_t(c)]) / sj.area;
+    p.seen = seen_weights(seen, area_share, 4, s_.error);
+  }
 }
 
 void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
@@ -204,9 +217,12 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     Vec3 pi, ni, pj, nj;
     uint32_t child = 0;
     h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni, &child);
-    h_.sample(sj, rng.uniform(), rng.uniform(), rng.uniform(), pj, nj);
+    uint32_t source_child = 0;
+    const double su = rng.uniform(), sv = rng.uniform();
+    h_.sample(sj, su, sv, rng.uniform(), pj, nj, &source_child);
     if (!ri.cluster) child = quadrant_of(quadrants, ri.normal, pi);
-    drawn_samples.push_back({child, 0.0, -1});
+    if (!sj.cluster) source_child = sample_quadrant(sj.shape, su, sv);
+    drawn_samples.push_back({child, source_child, 0.0, -1});
     const Vec3 d = pj - pi;
     const double r2 = dot(d, d);
     if (r2 <= 0) continue;
@@ -255,6 +271,21 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   p.sigma = all_blocked ? unoccluded / double(segments.size())
                         : N > 1 ? std::sqrt(std::max(0.0, m2 - m * m) / (N - 1)) : 0.0;
   p.share = ri.cluster ? cluster_shares(ri, sj) : child_shares(4, drawn_samples, visible, open / N);
+  // Link::seen, where rays were cast: the visible kernel of the samples by the source's part.
+  const uint32_t source_kids = sj.cluster ? sj.child_count : 4;
+  if (!segments.empty() && open > 0 && p.F > 0 && source_kids >= 2 && source_kids <= 4) {
+    double seen[4] = {0, 0, 0, 0};
+    for (const ClusterSample& c : drawn_samples)
+      if (c.segment >= 0) seen[c.source_child] += c.value * visible[size_t(c.segment)];
+    double area_share[4];
+    if (sj.cluster) {
+      for (uint32_t c = 0; c < source_kids; ++c) area_share[c] = h_[h_.child(sj, c)].area / sj.area;
+    } else {
+      const std::array<Polygon, 4> parts = split_element(sj.shape);
+      for (int c = 0; c < 4; ++c) area_share[c] = polygon_area(parts[size_t(c)]) / sj.area;
+    }
+    p.seen = seen_weights(seen, area_share, source_kids, s_.error);
+  }
 }
 
 std::array<float, 4> Solver::cluster_shares(const HNode& ri, const HNode& sj) const {

@@ -62,6 +62,17 @@ struct Delivery {
   std::vector<double> row;
 };
 
+// What a link with Link::seen takes from its source's parts, as the solve takes it.
+template <size_t N, class V>
+std::array<Vec3, N> seen_value(const Hierarchy& h, const Link& l, V& value) {
+  std::array<Vec3, N> out{};
+  for_each_part(h, l, [&](uint32_t node, double w) {
+    const std::array<Vec3, N> v = value(node);
+    for (size_t m = 0; m < N; ++m) out[m] += v[m] * w;
+  });
+  return out;
+}
+
 template <size_t N, class V>
 Delivery<N> delivered(const Hierarchy& h, V value) {
   const std::vector<HNode>& nodes = h.nodes();
@@ -76,7 +87,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
     if (n.parent >= 0) cube[k] = cube[size_t(n.parent)];
     for (const Link& l : n.links) {
       const Vec3 u = link_direction(n, h[l.source]);
-      const std::array<Vec3, N> v = value(l.source);
+      const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, value) : value(l.source);
       for (size_t m = 0; m < N; ++m) cube[k][m].add(n, u, l.F, v[m]);
     }
   }
@@ -106,7 +117,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
         const HNode& n = nodes[it.node];
         if (n.child_count == 0)
           for (const Link& l : n.links) {
-            const std::array<Vec3, N> v = value(l.source);
+            const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, value) : value(l.source);
             for (size_t m = 0; m < N; ++m) it.H[m] += v[m] * l.F;
             it.row += l.F;
           }
@@ -117,7 +128,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
         std::array<Item, 4> child;
         for (uint32_t c = 0; c < kids; ++c) child[c] = {h.child(n, c), it.H, it.row};
         for (const Link& l : n.links) {
-          const std::array<Vec3, N> v = value(l.source);
+          const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, value) : value(l.source);
           for (uint32_t c = 0; c < kids; ++c) {
             const double f = l.F * double(l.share[c]);
             for (size_t m = 0; m < N; ++m) child[c].H[m] += v[m] * f;
@@ -187,8 +198,10 @@ std::vector<double> column_sums(const Hierarchy& h, F receive) {
   area_means(h, mean, [&](const HNode& n, size_t) { return receive(n); });
   std::vector<double> per_node(nodes.size(), 0.0);
   for (size_t k = 0; k < nodes.size(); ++k)  // sequential: a fixed order of sums
-    for (const Link& l : nodes[k].links)
-      per_node[l.source] += l.F * received_area(h, uint32_t(k), l, [&](uint32_t c) { return mean[c]; }) / nodes[l.source].area;
+    for (const Link& l : nodes[k].links) {
+      const double power = l.F * received_area(h, uint32_t(k), l, [&](uint32_t c) { return mean[c]; });
+      for_each_part(h, l, [&](uint32_t node, double w) { per_node[node] += power * w / nodes[node].area; });  // Link::seen
+    }
   return path_sums(h, per_node);
 }
 

@@ -40,8 +40,8 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
       cube_g.push_back(parent >= 0 ? cube_g[slot[size_t(parent)]] : DirectionalIrradiance{});
       for (const Link& l : n.links) {
         const Vec3 u = link_direction(n, h[l.source]);
-        cube.back().add(n, u, l.F, sent(l.source, false));
-        cube_g.back().add(n, u, l.F, sent(l.source, true));
+        cube.back().add(n, u, l.F, sent(l, false));
+        cube_g.back().add(n, u, l.F, sent(l, true));
       }
     } else if (n.depth == 0 && parent >= 0) {
       const uint32_t c = slot[size_t(parent)];
@@ -56,6 +56,13 @@ Vec3 ClusterGather::sent(uint32_t node, bool gathered) const {
   const HNode& s = h_[node];
   if (!indirect_) return gathered ? Vec3{} : s.emission;
   return gathered ? s.Bt - emitted_[node] : s.Bt;
+}
+
+Vec3 ClusterGather::sent(const Link& l, bool gathered) const {
+  if (!has_seen(l)) return sent(l.source, gathered);
+  Vec3 out;
+  for_each_part(h_, l, [&](uint32_t node, double w) { out += sent(node, gathered) * w; });
+  return out;
 }
 
 LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting)
@@ -89,14 +96,14 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
     const uint32_t slot = own ? 0 : child_slot(h, below);
     for (const Link& l : r.links) {
       const HNode& s = h[l.source];
-      const Vec3 sent = clusters.sent(l.source, false), reflected = clusters.sent(l.source, true);
+      const Vec3 sent = clusters.sent(l, false), reflected = clusters.sent(l, true);
       // A source element near the receiver: the point's own form factor (the kernel changes within a
       // share's quadrant there; farther, the shares say enough). At a gathered vertex every element
       // source is taken at the point: the gather is what the walkthrough sees, and a quadrant's share
       // placed at a vertex is a staircase that Gouraud shading smooths into the wrong ramp.
       const bool point_form = !s.cluster && l.open > 0;
       const bool close = point_form && length(s.center - r.center) < kNear * (r.radius + s.radius);
-      if (point_form) near_.push_back({l.source, l.F / double(l.open), close});
+      if (point_form) near_.push_back({l.source, l.F / double(l.open), close, sent, reflected});
       // As the solve pushes it: by the part's share (the leaf's own links by the quadrant the point
       // falls in).
       for (uint32_t q = 0; q < 4; ++q) {
@@ -142,7 +149,7 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
     } else if (dot(x - src.shape.v[0], src.normal) > 0) {
       f = point_to_polygon(x, n.normal, src.shape) * s.visible;
     }
-    H += clusters_.sent(s.source, gathered) * f;
+    H += (gathered ? s.reflected : s.sent) * f;
     row += f;
   }
   // Gathered: the links' direct light is left for the gather's exact D, and a closed scene's row

@@ -48,7 +48,7 @@ void Solver::gather(HNode& n) {
   double f = 0;
   for (const Link& l : n.links) {
     const HNode& source = h_[l.source];
-    const Vec3 b = sent(source);
+    const Vec3 b = has_seen(l) ? link_sent(l) : sent(source);
     H += b * l.F;
     f += l.F;
     if (cube) cube->add(n, link_direction(n, source), l.F, b);

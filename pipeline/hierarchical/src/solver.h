@@ -27,6 +27,7 @@ struct Pending {
   double F = 0;
   float sigma = 0, open = 0;
   std::array<float, 4> share = {1, 1, 1, 1};
+  std::array<uint16_t, 4> seen = {0, 0, 0, 0};
   uint64_t rays = 0, grid_segments = 0;
 };
 
@@ -92,6 +93,8 @@ class Solver {
 
   // What a node sends along its links (the gather's source term).
   const Vec3& sent(const HNode& n) const { return s_.indirect ? n.Bt : n.emission; }
+  // What a link takes from its source: sent, or the source's children's weighed by Link::seen.
+  Vec3 link_sent(const Link& l) const;
 
   // Whether node i's radiosity reaches the display through the final gather (HierarchicalSettings::
   // gathered): its direct light from area emitters is evaluated at the vertices, not taken from links.
@@ -99,6 +102,7 @@ class Solver {
   // The luminance of what a source sends that a gathered receiver takes from its links: sent less
   // the source's own emission as sent (0 when sources send their emission alone).
   double reflected_sent(uint32_t source) const;
+  double reflected_sent(const Link& l) const;
 
   // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
   // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
@@ -181,9 +185,10 @@ class Solver {
   static constexpr uint64_t kExactClusterPairs = 64;
 
   // A Monte Carlo sample of a link with a cluster receiver: which child of the receiver its point
-  // lies in, its kernel (0 when the two points do not face each other), its ray (−1: none).
+  // lies in, which child of the source its other point lies in, its kernel (0 when the two points do
+  // not face each other), its ray (−1: none).
   struct ClusterSample {
-    uint32_t child;
+    uint32_t child, source_child;
     double value;
     int32_t segment;
   };
@@ -253,6 +258,7 @@ class Solver {
   static thread_local std::vector<ClusterSample> cluster_scratch_;
   std::vector<uint8_t> two_sided_;  // by node: a cluster holding a transmitting polygon or a twin
   static thread_local std::vector<uint8_t> blocked_scratch_;
+  static thread_local std::vector<uint8_t> quadrant_scratch_;
 };
 
 }  // namespace walkrad::hierarchical_detail

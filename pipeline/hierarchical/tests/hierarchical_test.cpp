@@ -20,6 +20,7 @@
 #include "walkrad/hierarchical/hierarchy.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/core/progress.h"
+#include "walkrad/core/sampling.h"
 
 namespace walkrad {
 namespace {
@@ -208,6 +209,71 @@ TEST(LeafIrradiance, ClampsCoincidentRowsButNotBalancedFactors) {
   leaf.balanced = false;
   EXPECT_NEAR(leaf_irradiance(leaf, Vec3(1, 1, 1), 1.0, &clamped).x, 1.0, 1e-15);
   EXPECT_TRUE(clamped);
+}
+
+
+// Link::seen: the weights are the visible kernel per part over the largest, in 65535ths; a link takes
+// its source's children by them once the source is split, and the source itself before.
+TEST(LinkSeen, WeighsTheSourcesChildrenOnceSplit) {
+  const double kernel[4] = {3.0, 1.0, 0.0, 0.0}, even[4] = {0.25, 0.25, 0.25, 0.25};
+  const std::array<uint16_t, 4> seen = seen_weights(kernel, even, 4, 0.1);
+  EXPECT_EQ(seen[0], 65535);
+  EXPECT_EQ(seen[1], 21845);
+  EXPECT_EQ(seen[2], 0);
+  const double none[4] = {0, 0, 0, 0}, almost[4] = {1.04, 0.98, 0.99, 0.99};
+  EXPECT_FALSE(has_seen(Link{0.1, 0, 0, 0, {1, 1, 1, 1}, 0, 0, seen_weights(none, even, 4, 0.1)}));
+  // 4% more from one part: the mean is within the requested 10%, no weights (read every sweep).
+  EXPECT_FALSE(has_seen(Link{0.1, 0, 0, 0, {1, 1, 1, 1}, 0, 0, seen_weights(almost, even, 4, 0.1)}));
+  EXPECT_TRUE(has_seen(Link{0.1, 0, 0, 0, {1, 1, 1, 1}, 0, 0, seen_weights(almost, even, 4, 0.01)}));
+
+  const Scene box = test::closed_box(1.0, {0.5, 0.5, 0.5}, {0, 0, 0});
+  const ClusterTree tree = build_cluster_tree(box);
+  Hierarchy h(box, tree);
+  const uint32_t source = h.polygon_root(1);
+  const Link l{0.1, source, 0, 0, {1, 1, 1, 1}, 1, 16, seen};
+  std::vector<std::pair<uint32_t, double>> parts;
+  const auto collect = [&](const Link& link) {
+    parts.clear();
+    for_each_part(h, link, [&](uint32_t node, double w) { parts.push_back({node, w}); });
+  };
+  collect(l);
+  ASSERT_EQ(parts.size(), 1u);  // not split yet: the source itself
+  EXPECT_EQ(parts[0].first, source);
+  EXPECT_EQ(parts[0].second, 1.0);
+  h.subdivide(source);
+  collect(l);
+  ASSERT_EQ(parts.size(), 4u);
+  EXPECT_EQ(parts[0].first, h.child(h[source], 0));
+  EXPECT_NEAR(parts[0].second, 0.75, 1e-12);
+  EXPECT_NEAR(parts[1].second, 0.25, 1e-12);
+  EXPECT_EQ(parts[2].second + parts[3].second, 0.0);
+  Link plain = l;
+  plain.seen = {0, 0, 0, 0};
+  collect(plain);
+  EXPECT_EQ(parts.size(), 1u);  // without weights: the source's mean
+}
+
+// The quadrant of a sample from its (u, v) is the one quadrant_of finds from the point, for a
+// skewed quad and a triangle.
+TEST(LinkSeen, SampleQuadrantMatchesThePoint) {
+  Polygon quad;
+  quad.v = {Vec3(0, 0, 0), Vec3(2, 0.3, 0), Vec3(2.5, 1.8, 0), Vec3(-0.2, 1.1, 0)};
+  quad.count = 4;
+  Polygon tri = quad;
+  tri.count = 3;
+  for (const Polygon& p : {quad, tri}) {
+    const std::array<Polygon, 4> kids = split_element(p);
+    const Vec3 n = polygon_normal(p);
+    int counts[4] = {0, 0, 0, 0};
+    for (int a = 0; a < 64; ++a)
+      for (int b = 0; b < 64; ++b) {
+        const double u = (a + 0.37) / 64, v = (b + 0.61) / 64;
+        const uint32_t q = sample_quadrant(p, u, v);
+        ASSERT_EQ(q, quadrant_of(kids, n, sample_polygon(p, u, v))) << u << " " << v;
+        ++counts[q];
+      }
+    for (int c = 0; c < 4; ++c) EXPECT_GT(counts[c], 0);
+  }
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ class ClusterGather {
   // What a node sends along a link: everything (Bt, or its emission without indirect light), or for
   // a gathered vertex only what it reflects.
   Vec3 sent(uint32_t node, bool gathered) const;
+  Vec3 sent(const Link& l, bool gathered) const;  // what a link takes from its source (Link::seen)
   double row(uint32_t polygon) const { return row_[polygon]; }
 
  private:
@@ -66,6 +67,7 @@ class LeafRadiosity {
     uint32_t source;
     double visible;  // F / F_open of the link
     bool close;      // near enough for the point's form factor at every vertex (else at gathered ones only)
+    Vec3 sent, reflected;  // what the link takes from the source (ClusterGather::sent)
   };
   const ClusterGather& clusters_;
   const Hierarchy& h_;
