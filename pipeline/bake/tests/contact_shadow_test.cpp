@@ -4,9 +4,9 @@
 // - No output triangle straddles either footprint (contact splitting cuts the floor and the ceiling
 //   along them: contact_split.h).
 // - Within 2 cm of each outline (1 cm outside it) the bake agrees with the reference: beside the lamp
-//   on the ceiling within 3% (issue 23's target; measured 1.1%, 2.7% before links took what they see
+//   on the ceiling within 3% (issue 23's target; measured 1.2%, 2.7% before links took what they see
 //   of their sources, Link::seen); beside the box on the floor, where the box's vertical edges cast
-//   penumbrae into the corners, within 15% RMS (measured 8.3%; 8.4% before Link::seen, 11.7% before
+//   penumbrae into the corners, within 15% RMS (measured 7.8%; 8.4% before Link::seen, 11.7% before
 //   vertices took their own row in a closed scene; issue 23 asks 3%, which needs shadow boundaries in
 //   the mesh: discontinuity meshing, not built yet).
 // - In the box's penumbra on the floor (5 cm wide, where the lamp is partly hidden) the error is at

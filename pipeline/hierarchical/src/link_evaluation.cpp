@@ -136,7 +136,7 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
       if (dot(q.position - sj.shape.v[0], sj.normal) > 0) unoccluded[c] += q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
     for (int k = 0; k < per_child; ++k) {
       const Vec3 x = sample_polygon(kids[c], rng.uniform(), rng.uniform());
-      const double u = rng.uniform(), v = rng.uniform();
+      const double v = rng.uniform(), u = rng.uniform();  // the order GCC evaluated them in as arguments
       const Vec3 y = sample_polygon(sj.shape, u, v);
       segments.push_back({x + ri.normal * offset, y + sj.normal * offset});
       kernel.push_back(sj.area / kPi * point_kernel(x, ri.normal, y, sj.normal));
@@ -218,8 +218,8 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     uint32_t child = 0;
     h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni, &child);
     uint32_t source_child = 0;
-    const double su = rng.uniform(), sv = rng.uniform();
-    h_.sample(sj, su, sv, rng.uniform(), pj, nj, &source_child);
+    const double sw = rng.uniform(), sv = rng.uniform(), su = rng.uniform();  // as GCC evaluated them as arguments
+    h_.sample(sj, su, sv, sw, pj, nj, &source_child);
     if (!ri.cluster) child = quadrant_of(quadrants, ri.normal, pi);
     if (!sj.cluster) source_child = sample_quadrant(sj.shape, su, sv);
     drawn_samples.push_back({child, source_child, 0.0, -1});
