@@ -132,8 +132,10 @@ class RowComputer {
       ++p.points;
       if (!need_rays) continue;
       const Vec3 from = q.position + ri.normal * rays_->offset();
-      for (int r = 0; r < k; ++r)
-        segments_.push_back({from, sample_polygon(sj.shape, rng.uniform(), rng.uniform()) + sj.normal * rays_->offset()});
+      for (int r = 0; r < k; ++r) {
+        const double v = rng.uniform(), u = rng.uniform();  // named: argument order is unspecified (GCC's kept)
+        segments_.push_back({from, sample_polygon(sj.shape, u, v) + sj.normal * rays_->offset()});
+      }
     }
     if (p.points) pairs_.push_back(p);
   }

@@ -113,7 +113,8 @@ double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& 
     int count = 0;
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j) {
-        const Vec3 y = sample_polygon(e.shape, (i + rng.uniform()) / m, (j + rng.uniform()) / m);
+        const double v = (j + rng.uniform()) / m, u = (i + rng.uniform()) / m;  // named: argument order is unspecified (GCC's kept)
+        const Vec3 y = sample_polygon(e.shape, u, v);
         const Vec3 d = y - x;
         const double r2 = dot(d, d);
         const double k = r2 > 0 ? std::max(0.0, dot(d, n)) * std::max(0.0, -dot(d, e.normal)) / (r2 * r2) : 0.0;

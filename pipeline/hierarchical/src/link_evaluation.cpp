@@ -135,8 +135,10 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
     for (const QuadraturePoint& q : quadrature_points(kids[c], order))
       if (dot(q.position - sj.shape.v[0], sj.normal) > 0) unoccluded[c] += q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
     for (int k = 0; k < per_child; ++k) {
-      const Vec3 x = sample_polygon(kids[c], rng.uniform(), rng.uniform());
-      const double v = rng.uniform(), u = rng.uniform();  // the order GCC evaluated them in as arguments
+      // Named: the order of arguments' evaluation is unspecified (the order GCC took is kept).
+      const double xv = rng.uniform(), xu = rng.uniform();
+      const Vec3 x = sample_polygon(kids[c], xu, xv);
+      const double v = rng.uniform(), u = rng.uniform();
       const Vec3 y = sample_polygon(sj.shape, u, v);
       segments.push_back({x + ri.normal * offset, y + sj.normal * offset});
       kernel.push_back(sj.area / kPi * point_kernel(x, ri.normal, y, sj.normal));
@@ -216,9 +218,11 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   for (; drawn < n || (facing < (n + 3) / 4 && drawn < 8 * n); ++drawn) {
     Vec3 pi, ni, pj, nj;
     uint32_t child = 0;
-    h_.sample(ri, rng.uniform(), rng.uniform(), rng.uniform(), pi, ni, &child);
+    // Named: the order of arguments' evaluation is unspecified (the order GCC took is kept).
+    const double rw = rng.uniform(), rv = rng.uniform(), ru = rng.uniform();
+    h_.sample(ri, ru, rv, rw, pi, ni, &child);
     uint32_t source_child = 0;
-    const double sw = rng.uniform(), sv = rng.uniform(), su = rng.uniform();  // as GCC evaluated them as arguments
+    const double sw = rng.uniform(), sv = rng.uniform(), su = rng.uniform();
     h_.sample(sj, su, sv, sw, pj, nj, &source_child);
     if (!ri.cluster) child = quadrant_of(quadrants, ri.normal, pi);
     if (!sj.cluster) source_child = sample_quadrant(sj.shape, su, sv);

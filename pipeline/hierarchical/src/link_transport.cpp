@@ -142,17 +142,33 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
   return d;
 }
 
+// N values of a node side by side, so that a link reads its source's in one place.
+template <size_t N>
+struct Values {
+  std::array<Vec3, N> v{};
+  Values operator+(const Values& o) const {
+    Values r;
+    for (size_t m = 0; m < N; ++m) r.v[m] = v[m] + o.v[m];
+    return r;
+  }
+  Values operator*(double s) const {
+    Values r;
+    for (size_t m = 0; m < N; ++m) r.v[m] = v[m] * s;
+    return r;
+  }
+};
+
 // T x for N vectors x at once, x given at the leaves (indexed by node): zero except at leaf elements.
 template <size_t N>
 std::array<std::vector<Vec3>, N> transport(const Hierarchy& h, const std::array<const std::vector<Vec3>*, N>& x) {
   const std::vector<HNode>& nodes = h.nodes();
-  std::array<std::vector<Vec3>, N> sent;
-  for (size_t m = 0; m < N; ++m) area_means(h, sent[m], [&](const HNode& n, size_t k) { return (*x[m])[k] * n.send; });
-  const Delivery<N> d = delivered<N>(h, [&](uint32_t source) {
-    std::array<Vec3, N> v;
-    for (size_t m = 0; m < N; ++m) v[m] = sent[m][source];
-    return v;
+  std::vector<Values<N>> sent;
+  area_means(h, sent, [&](const HNode& n, size_t k) {
+    Values<N> r;
+    for (size_t m = 0; m < N; ++m) r.v[m] = (*x[m])[k] * n.send;
+    return r;
   });
+  const Delivery<N> d = delivered<N>(h, [&](uint32_t source) { return sent[source].v; });
   std::array<std::vector<Vec3>, N> out;
   for (size_t m = 0; m < N; ++m) {
     out[m].assign(nodes.size(), Vec3{});

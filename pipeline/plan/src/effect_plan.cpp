@@ -119,7 +119,8 @@ bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, ui
     const Vec3 b = cross(normal, t);
     Rng rng(i, 0x636c6f73ull);  // "clos"
     for (size_t k = 0; k < per; ++k) {
-      const Vec3 origin = sample_polygon(p, rng.uniform(), rng.uniform()) + normal * rays.offset();
+      const double v = rng.uniform(), u = rng.uniform();  // named: argument order is unspecified (GCC's kept)
+      const Vec3 origin = sample_polygon(p, u, v) + normal * rays.offset();
       const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
       const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - r * r));
       ++rays_cast;
