@@ -21,6 +21,8 @@ constexpr int kLightPoints = 4;
 // element source took 30 s of the bake's 77 (16 s with 8). On the Cornell box 4, 8 and ∞ gave 1.01,
 // 0.95 and 0.92% weighted RMS.
 constexpr double kFar = 4.0;
+// A near source's part closer to the point than this many of its radii is taken by its own parts.
+constexpr double kPart = 2.0;
 
 }  // namespace
 
@@ -121,6 +123,17 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
   }
 }
 
+void LeafRadiosity::near_parts(uint32_t node, const Vec3& x, const Vec3& normal, bool gathered, Vec3& H, double& f) const {
+  const HNode& s = h_[node];
+  if (s.child_count == 4 && length(s.center - x) < kPart * s.radius) {
+    for (uint32_t c = 0; c < 4; ++c) near_parts(h_.child(s, c), x, normal, gathered, H, f);
+    return;
+  }
+  const double ff = point_to_polygon(x, normal, s.shape);  // the parts' form factors sum to the source's
+  H += clusters_.sent(node, gathered) * ff;
+  f += ff;
+}
+
 Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   const HNode& n = h_[leaf_];
   if (flat_) {
@@ -147,6 +160,17 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
       f = src.area * std::max(0.0, dot(d, n.normal) / r) * std::max(0.0, -dot(d, src.normal) / r) / (kPi * r2 + src.area) *
           s.visible;
     } else if (dot(x - src.shape.v[0], src.normal) > 0) {
+      // Near: the source's parts that are near the point by their own form factors and radiosity
+      // (the kernel varies over them: the Cornell box's block face towards the camera sees the floor
+      // at its foot most: 4.9% → 3.3% off).
+      if (src.child_count == 4 && length(src.center - x) < kPart * src.radius) {
+        Vec3 Hs;
+        double fs = 0;
+        near_parts(s.source, x, n.normal, gathered, Hs, fs);
+        H += Hs * s.visible;
+        row += fs * s.visible;
+        continue;
+      }
       f = point_to_polygon(x, n.normal, src.shape) * s.visible;
     }
     H += (gathered ? s.reflected : s.sent) * f;

@@ -63,6 +63,13 @@ class LeafRadiosity {
   Vec3 at(const Vec3& x, bool gathered = false) const;
 
  private:
+  // Σ over a near source's parts down to where the point is no longer close to them: each part's
+  // point form factor to x and what it sends (ClusterGather::sent), added to H and f.
+  void near_parts(uint32_t node, const Vec3& x, const Vec3& normal, bool gathered, Vec3& H, double& f) const;
+
+ public:
+
+ private:
   struct Near {
     uint32_t source;
     double visible;  // F / F_open of the link
