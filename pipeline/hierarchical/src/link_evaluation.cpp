@@ -101,6 +101,12 @@ std::array<float, 4> shares(const double* Fc, const double* sigma_c, uint32_t co
   return out;
 }
 
+// Each of an element's quadrants (split_element) as a share of its area (Link::seen's baseline).
+void quadrant_area_shares(const Polygon& shape, double area, double* share) {
+  const std::array<Polygon, 4> parts = split_element(shape);
+  for (int c = 0; c < 4; ++c) share[c] = polygon_area(parts[size_t(c)]) / area;
+}
+
 }  // namespace
 
 void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments,
@@ -182,9 +188,8 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   }
   p.share = shares(Fc, sigma_c, 4, p.F);
   if (per_child > 0 && p.F > 0) {  // where rays were cast
-    const std::array<Polygon, 4> parts = split_element(sj.shape);
     double area_share[4];
-    for (int c = 0; c < 4; ++c) area_share[c] = polygon_area(parts[size_t(c)]) / sj.area;
+    quadrant_area_shares(sj.shape, sj.area, area_share);
     p.seen = seen_weights(seen, area_share, 4, s_.error);
   }
 }
@@ -285,8 +290,7 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     if (sj.cluster) {
       for (uint32_t c = 0; c < source_kids; ++c) area_share[c] = h_[h_.child(sj, c)].area / sj.area;
     } else {
-      const std::array<Polygon, 4> parts = split_element(sj.shape);
-      for (int c = 0; c < 4; ++c) area_share[c] = polygon_area(parts[size_t(c)]) / sj.area;
+      quadrant_area_shares(sj.shape, sj.area, area_share);
     }
     p.seen = seen_weights(seen, area_share, source_kids, s_.error);
   }

@@ -24,6 +24,9 @@ constexpr double kFar = 4.0;
 // A near source's part closer to the point than this many of its radii is taken by its own parts.
 constexpr double kPart = 2.0;
 
+// Whether a point is close enough to a split element for its parts to be taken one by one.
+bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && length(s.center - x) < kPart * s.radius; }
+
 }  // namespace
 
 ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vector<PunctualLight>* lights, const RayScene* rays)
@@ -125,7 +128,7 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool 
 
 void LeafRadiosity::near_parts(uint32_t node, const Vec3& x, const Vec3& normal, bool gathered, Vec3& H, double& f) const {
   const HNode& s = h_[node];
-  if (s.child_count == 4 && length(s.center - x) < kPart * s.radius) {
+  if (by_parts(s, x)) {
     for (uint32_t c = 0; c < 4; ++c) near_parts(h_.child(s, c), x, normal, gathered, H, f);
     return;
   }
@@ -163,7 +166,7 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
       // Near: the source's parts that are near the point by their own form factors and radiosity
       // (the kernel varies over them: the Cornell box's block face towards the camera sees the floor
       // at its foot most: 4.9% → 3.3% off).
-      if (src.child_count == 4 && length(src.center - x) < kPart * src.radius) {
+      if (by_parts(src, x)) {
         Vec3 Hs;
         double fs = 0;
         near_parts(s.source, x, n.normal, gathered, Hs, fs);
