@@ -20,6 +20,7 @@
 #include "walkrad/accuracy/reference_tracer.h"
 #include "walkrad/bake/bake.h"
 #include "walkrad/formats/scene_writer.h"
+#include "walkrad/testing/reference_comparison.h"
 #include "walkrad/testing/test_scenes.h"
 
 namespace walkrad {
@@ -70,19 +71,8 @@ TEST(HiddenSource, CeilingLitByAFloorHalfUnderATable) {
   rs.samples = 32768;
   uint64_t cast = 0;
   const std::vector<RadiosityEstimate> ref = tracer.estimate(at, rs, cast);
-  double sq = 0, noise = 0;
-  for (size_t k = 0; k < at.size(); ++k) {
-    const Vec3 down(0, -1, 0);
-    const BakeSampler::Sample b = sampler.along(at[k].position - down * 0.1, down);
-    ASSERT_TRUE(b.hit && std::fabs(b.distance - 0.1) < 1e-3);
-    const double r = luminance(ref[k].B), e = (luminance(b.B) - r) / r;
-    sq += e * e;
-    noise += (ref[k].luminance_error / r) * (ref[k].luminance_error / r);
-    if (std::getenv("WALKRAD_TEST_VERBOSE"))
-      std::printf("  (%.1f %.1f) bake %.4f reference %.4f ± %.4f (%+.1f%%)\n", at[k].position.x, at[k].position.z, luminance(b.B), r,
-                  ref[k].luminance_error, 100 * e);
-  }
-  const double rms = std::sqrt(sq / double(at.size())), bar = std::sqrt(noise / double(at.size()));
+  const test::ReferenceComparison c = test::compare_with_reference(sampler, at, std::vector<Vec3>(at.size(), {0, 1, 0}), 0.1, ref);
+  const double rms = c.rms, bar = c.bar;
   std::printf("ceiling: RMS %.2f%% (the reference's standard error %.2f%%)\n", 100 * rms, 100 * bar);
   EXPECT_LT(rms, 0.02);
   if (!std::getenv("WALKRAD_KEEP_TEST_BAKE")) fs::remove_all(dir);

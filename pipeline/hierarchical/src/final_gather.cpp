@@ -14,6 +14,7 @@
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/link_transport.h"
+#include "walkrad/hierarchical/transmission.h"
 #include "walkrad/scene/transmission_twins.h"
 
 namespace walkrad {
@@ -156,7 +157,7 @@ namespace {
 // edge's quarter, half and three-quarter points and at the centre (a quad's centre lies on the
 // diagonal v0–v2 its two triangles share). The quarters catch a penumbra that a leaf straddles
 // symmetrically: at its midpoint the light is half on, as the corners' mean says.
-double interpolation_error(const Hierarchy& h, const DirectGather& g, uint32_t leaf, uint64_t& rays) {
+double interpolation_error(const Hierarchy& h, const DirectGather& g, uint32_t leaf, const Vec3& tau, uint64_t& rays) {
   const HNode& n = h[leaf];
   const EmitterRanges from = g.candidates(leaf);
   const Vec3 c = polygon_centroid(n.shape);
@@ -164,7 +165,11 @@ double interpolation_error(const Hierarchy& h, const DirectGather& g, uint32_t l
     Vec3 inward = c - x;
     const double len = length(inward);
     inward = len > 0 ? inward / len : Vec3{};
-    return luminance(mul(n.rho, g.at(x, n.normal, inward, from, rays, DirectGather::kTestPenumbra)));
+    Vec3 shown = mul(n.rho, g.at(x, n.normal, inward, from, rays, DirectGather::kTestPenumbra));
+    // A transmitting leaf shows τ times its back's light too: the punctual lights' (the mesher's
+    // LeafRadiosity takes their variation at the point; lamp-room's bulb inside its shade).
+    if (max_component(tau) > 0) shown += mul(tau, g.at(x, n.normal * -1.0, inward, {}, rays, DirectGather::kTestPenumbra));
+    return luminance(shown);
   };
   std::array<double, 4> corner{};
   for (int k = 0; k < n.shape.count; ++k) corner[size_t(k)] = shade(n.shape.v[size_t(k)]);
@@ -183,13 +188,17 @@ double interpolation_error(const Hierarchy& h, const DirectGather& g, uint32_t l
 }  // namespace
 
 uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefinement& r, uint64_t& rays_cast) {
-  if (g.emitter_count() == 0 || r.white <= 0) return 0;
+  if ((g.emitter_count() == 0 && !g.has_lights()) || r.white <= 0) return 0;
+  auto twin_of = [&](const HNode& n) { return r.twins ? (*r.twins)[n.polygon] : kNoTwin; };
+  auto tau_of = [&](const HNode& n) {
+    return twin_of(n) == kNoTwin ? Vec3{} : h.scene().materials[h.scene().polygons[n.polygon].material].transmittance;
+  };
   std::vector<uint32_t> batch;
   for (uint32_t i = 0; i < h.nodes().size(); ++i) {
     const HNode& n = h[i];
     if (!is_leaf_element(n) || max_component(n.emission) > 0) continue;
     if (r.seen && !(*r.seen)[n.polygon]) continue;
-    if (r.twins && (*r.twins)[n.polygon] != kNoTwin) continue;
+    if (twin_of(n) != kNoTwin && !g.has_lights()) continue;  // its back's light is the links' alone
     batch.push_back(i);
   }
   // The leaves over their tolerance wait in one queue, the worst first whatever its depth: level by
@@ -210,7 +219,7 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
         const HNode& n = h[batch[k]];
         if (n.depth >= r.max_depth || n.area * 0.25 < r.min_area) continue;
         const double shown = std::clamp(luminance(n.B), 0.1 * r.white, r.white);
-        excess[k] = interpolation_error(h, g, batch[k], cast) / (kInterpolationShare * r.error * shown);
+        excess[k] = interpolation_error(h, g, batch[k], tau_of(n), cast) / (kInterpolationShare * r.error * shown);
       }
       rays += cast;
     });
@@ -226,6 +235,8 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
       queue.pop_back();
       h.subdivide(i);
       ++splits;
+      const uint32_t twin = twin_of(h[i]);
+      const Vec3 tau = tau_of(h[i]), twin_D = twin == kNoTwin ? Vec3{} : twin_direct(h, h[i], twin);
       for (uint32_t c = 0; c < 4; ++c) {
         const uint32_t child = h.child(h[i], c);
         HNode& kid = h[child];
@@ -236,6 +247,13 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
         kid.D = parent.D;
         kid.D_known = parent.D_known;
         kid.Hl = parent.Hl;
+        // A transmitting kid passes on its twin's light at its own place (twin_direct, as the mesher
+        // takes it there): B as the solve would have made it from the twin's D.
+        if (twin != kNoTwin) {
+          const Vec3 change = mul(tau, twin_direct(h, kid, twin) - twin_D);
+          kid.B += change;
+          kid.Bt += change * kid.send;
+        }
         batch.push_back(child);
       }
     }

@@ -20,10 +20,19 @@ std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end(); ++k) {
       HNode& n = h_[elements[k]];
-      const DirectIrradiance d = direct_irradiance(n.shape, *s_.lights, s_.visibility ? &rays_ : nullptr, 4, rays[k]);
+      const RayScene* occluders = s_.visibility ? &rays_ : nullptr;
+      const DirectIrradiance d = direct_irradiance(n.shape, *s_.lights, occluders, 4, rays[k]);
       n.D = d.mean;
       n.D_known = true;
-      spread[k] = d.spread;
+      spread[k] = luminance(n.rho) * d.spread;
+      // A transmitting element shows τ times what lights its back as well (a bulb inside a shade:
+      // lamp-room's shade outside was left as coarse as its own dim side asked, 17% off).
+      const Vec3 tau = transmittance(n);
+      if (max_component(tau) > 0) {
+        Polygon back = n.shape;
+        std::reverse(back.v.begin(), back.v.begin() + back.count);
+        spread[k] += luminance(tau) * direct_irradiance(back, *s_.lights, occluders, 4, rays[k]).spread;
+      }
     }
   });
   for (uint64_t r : rays) stats_.light_rays += r;
@@ -218,8 +227,6 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   int drawn = 0, facing = 0;
   std::vector<ClusterSample>& drawn_samples = cluster_scratch_;
   drawn_samples.clear();
-  std::array<Polygon, 4> quadrants;  // an element receiver's children to be
-  if (!ri.cluster) quadrants = split_element(ri.shape);
   for (; drawn < n || (facing < (n + 3) / 4 && drawn < 8 * n); ++drawn) {
     Vec3 pi, ni, pj, nj;
     uint32_t child = 0;
@@ -229,7 +236,7 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     uint32_t source_child = 0;
     const double sw = rng.uniform(), sv = rng.uniform(), su = rng.uniform();
     h_.sample(sj, su, sv, sw, pj, nj, &source_child);
-    if (!ri.cluster) child = quadrant_of(quadrants, ri.normal, pi);
+    if (!ri.cluster) child = sample_quadrant(ri.shape, ru, rv);  // an element receiver's child to be
     if (!sj.cluster) source_child = sample_quadrant(sj.shape, su, sv);
     drawn_samples.push_back({child, source_child, 0.0, -1});
     const Vec3 d = pj - pi;

@@ -44,7 +44,7 @@ void Solver::refine_for_lights() {
     std::vector<uint32_t> next;
     for (size_t k = 0; k < frontier.size(); ++k) {
       const uint32_t i = frontier[k];
-      if (!splittable(i) || luminance(h_[i].rho) * spread[k] <= tolerance(i)) continue;
+      if (!splittable(i) || spread[k] <= tolerance(i)) continue;  // spread: of what it shows
       h_.subdivide(i);
       ++stats_.light_refinements;
       for (uint32_t c = 0; c < h_[i].child_count; ++c) next.push_back(h_.child(h_[i], c));

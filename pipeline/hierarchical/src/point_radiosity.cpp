@@ -7,6 +7,7 @@
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/link_transport.h"
+#include "walkrad/hierarchical/transmission.h"
 
 namespace walkrad {
 
@@ -14,8 +15,6 @@ namespace {
 
 // Centre distances below this many times the two radii count as near.
 constexpr double kNear = 3.0;
-// Points a side (squared) for a transmitting leaf's mean punctual irradiance, as the solve takes it.
-constexpr int kLightPoints = 4;
 // At a gathered vertex, a source farther than this many times its radius is taken as a disc of its area
 // (A cos θ cos θ' / (π r² + A)): on office-floor's 8 rooms the contour formula at every vertex for every
 // element source took 30 s of the bake's 77 (16 s with 8). On the Cornell box 4, 8 and ∞ gave 1.01,
@@ -23,6 +22,9 @@ constexpr int kLightPoints = 4;
 constexpr double kFar = 4.0;
 // A near source's part closer to the point than this many of its radii is taken by its own parts.
 constexpr double kPart = 2.0;
+
+// A link's visible fraction above this saw its source whole (F and F_open agree to float rounding).
+constexpr double kWhole = 0.999;
 
 // Whether a point is close enough to a split element for its parts to be taken one by one.
 bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && length(s.center - x) < kPart * s.radius; }
@@ -70,20 +72,20 @@ Vec3 ClusterGather::sent(const Link& l, bool gathered) const {
   return out;
 }
 
-LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting)
+LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint32_t twin)
     : clusters_(clusters), h_(clusters.hierarchy()), leaf_(leaf),
-      flat_(h_[leaf].cluster || transmitting) {
+      flat_(h_[leaf].cluster || twin != kNoTwin) {
   if (flat_) {
     // A transmitting leaf keeps its mean, plus how the punctual lights' light varies over it on either
     // side: a bulb inside a shade lights the shade's inside unevenly, and τ passes that on outside.
+    // The departures are from what B holds: the leaf's own D, and the twin's D where the solve took
+    // it (twin_received: a coarser twin's mean). From the leaf's own mean on the back instead, the
+    // shade's outside in lamp-room came out flattened, the bright middle below τ D alone (17% off).
     const HNode& n = h_[leaf];
-    if (!transmitting || !clusters.lights()) return;
+    if (twin == kNoTwin || !clusters.lights()) return;
     tau_ = clusters.hierarchy().scene().materials[clusters.hierarchy().scene().polygons[n.polygon].material].transmittance;
-    Polygon back = n.shape;  // the twin's side: the same corners the other way round
-    std::reverse(back.v.begin(), back.v.begin() + back.count);
-    uint64_t rays = 0;
-    D_front_ = direct_irradiance(n.shape, *clusters.lights(), clusters.rays(), kLightPoints, rays).mean;
-    D_back_ = direct_irradiance(back, *clusters.lights(), clusters.rays(), kLightPoints, rays).mean;
+    D_front_ = n.D;
+    D_back_ = twin_direct(h_, n, twin);
     lit_sides_ = true;
     return;
   }
@@ -151,6 +153,8 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   const uint32_t q = quadrant_of(quadrants_, n.normal, x);
   Vec3 H = gathered ? Hg_[q] : H_[q];
   double row = gathered ? rowg_[q] : row_[q];
+  Vec3 H_open;  // near sources the link saw whole: exact at the point
+  double f_open = 0;
   for (const Near& s : near_) {
     if (!gathered && !s.close) continue;
     const HNode& src = h_[s.source];
@@ -170,15 +174,24 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
         Vec3 Hs;
         double fs = 0;
         near_parts(s.source, x, n.normal, gathered, Hs, fs);
-        H += Hs * s.visible;
-        row += fs * s.visible;
+        (s.visible > kWhole ? H_open : H) += Hs * s.visible;
+        (s.visible > kWhole ? f_open : row) += fs * s.visible;
         continue;
       }
       f = point_to_polygon(x, n.normal, src.shape) * s.visible;
     }
-    H += (gathered ? s.reflected : s.sent) * f;
-    row += f;
+    (s.visible > kWhole ? H_open : H) += (gathered ? s.reflected : s.sent) * f;
+    (s.visible > kWhole ? f_open : row) += f;
   }
+  if (gathered && n.balanced && f_open < 1 && f_open + row > 1 && scalable_row(f_open + row)) {
+    // A closed scene's row overfilled at the point: the links' visibility is their leaf's mean, and a
+    // point where an occluder hides part of the sources (the table under lamp-room's shade, whose row
+    // summed to 1.4) counts the occluder and what it hides. The excess is taken from the sources seen
+    // in part, whose visibility the point does not know; those seen whole are exact here (the shade).
+    return n.emission + mul(n.rho, H_open + H * ((1 - f_open) / row));
+  }
+  H += H_open;
+  row += f_open;
   // Gathered: the links' direct light is left for the gather's exact D, and a closed scene's row
   // scaling (the part of the hemisphere the links miss, filled at the mean of what they see) scales
   // the reflected light alone: the emitters' links are not what the links miss (office-floor's

@@ -116,7 +116,14 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
 
 double Solver::push_pull_importance(uint32_t i, double down) {
   const double total = h_[i].Ig + down;
-  if (h_[i].child_count == 0) return h_[i].I = h_[i].R + total;
+  if (h_[i].child_count == 0) {
+    // Importance passes through a transmitting surface as light does, τ of it to the twin at the
+    // same place: what lights the inside of a shade is seen through it (lamp-room: the shade's inside,
+    // seen by no viewpoint, stayed one element a face and its outside took that element's mean).
+    const Vec3 tau = transmittance(h_[i]);
+    const double through = max_component(tau) > 0 ? luminance(tau) * twin_importance(h_[i]) : 0.0;
+    return h_[i].I = h_[i].R + total + through;
+  }
   double sum = 0;
   const double area = h_[i].area;
   for (uint32_t k = 0; k < h_[i].child_count; ++k) {

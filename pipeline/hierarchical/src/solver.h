@@ -135,10 +135,15 @@ class Solver {
     return h_.scene().materials[h_.scene().polygons[n.polygon].material].transmittance;
   }
   Vec3 twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
+  // The importance of the twin's node at n's place, by n's share of its area (as last pushed).
+  double twin_importance(const HNode& n) const {
+    const uint32_t t = leaf_at(h_, h_.polygon_root((*s_.twins)[n.polygon]), polygon_centroid(n.shape), n.depth);
+    return h_[t].area > 0 ? h_[t].I * std::min(1.0, n.area / h_[t].area) : 0.0;
+  }
   const std::vector<PunctualLight>* lights() const { return s_.lights && !s_.lights->empty() ? s_.lights : nullptr; }
 
   // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
-  // parallel; returns each one's spread.
+  // parallel; returns how unevenly each one shows it (ρ × the spread, plus τ × the back's).
   std::vector<double> direct_for(const std::vector<uint32_t>& elements);
 
   void compute_missing_direct();

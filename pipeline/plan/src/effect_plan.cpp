@@ -266,18 +266,22 @@ Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, cons
                    const std::map<std::string, std::string>& overrides) {
   size_t emitters = 0;
   for (const Polygon& p : scene.polygons) emitters += scene.materials[p.material].emits() ? 1 : 0;
+  const size_t lights = scene.lights.size();
   Effect e;
-  e.on = emitters > 0 && method == "hierarchical" && !views.empty();
-  e.reason = method != "hierarchical" ? "classic method: vertices take the elements' radiosity"
-             : emitters == 0          ? "no area emitter: the links' light is all indirect"
+  e.on = emitters + lights > 0 && method == "hierarchical" && !views.empty();
+  const std::string what = emitters > 0 ? std::to_string(emitters) + " emitting polygons" + (lights > 0 ? " and punctual lights" : "")
+                                        : std::to_string(lights) + " punctual lights";
+  e.reason = method != "hierarchical"  ? "classic method: vertices take the elements' radiosity"
+             : emitters + lights == 0 ? "no emitter: nothing to gather"
              : views.empty()
                  ? "no viewpoints: nothing says which vertices are seen, they keep the solution's values "
                    "(--effect gather=on gathers at every vertex)"
-                 : std::to_string(emitters) + " emitting polygons: their direct light evaluated at the vertices of the polygons "
-                                              "the viewpoints see (shadow rays to each emitter; the links bring the indirect)";
+                 : what + ": their direct light evaluated at the vertices of the polygons the viewpoints see (shadow "
+                          "rays to each emitter), the nearby surfaces' light at the point, and the mesh split where "
+                          "its shading would miss a shadow's edge (the links bring the indirect)";
   apply_override(e, "gather", overrides);
-  if (e.on && (emitters == 0 || method != "hierarchical"))
-    throw InputError("--effect", "gather", emitters == 0 ? "the scene has no emitting polygon" : "the final gather exists only in the hierarchical method",
+  if (e.on && (emitters + lights == 0 || method != "hierarchical"))
+    throw InputError("--effect", "gather", emitters + lights == 0 ? "the scene has no emitter" : "the final gather exists only in the hierarchical method",
                      kExitBadArguments);
   return e;
 }

@@ -35,6 +35,7 @@ class DirectGather {
   DirectGather(const Hierarchy& h, const std::vector<PunctualLight>* lights, const RayScene* rays);
 
   size_t emitter_count() const { return emitters_.size(); }
+  bool has_lights() const { return lights_ != nullptr; }
 
   // The emitters that can light a leaf element: under the sources of the links on its chain.
   EmitterRanges candidates(uint32_t leaf) const;
@@ -77,7 +78,7 @@ class DirectGather {
 // parent's (point_radiosity.h). In a fixed order: deterministic. Returns the splits.
 struct GatherRefinement {
   const std::vector<uint8_t>* seen = nullptr;   // per input polygon, 1: gathered (null: all)
-  const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none) are not gathered
+  const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none): split for both sides' lights
   double error = 0.1;                           // relative to what the leaf shows
   double white = 0;                             // the display's white (luminance, W/m²)
   double min_area = 0;                          // no leaf below it

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/scene/transmission_twins.h"
 #include "walkrad/visibility/ray_scene.h"
 
 namespace walkrad {
@@ -55,9 +56,10 @@ class ClusterGather {
 // once, and the near element sources kept for the contour formula at each point.
 class LeafRadiosity {
  public:
-  // A cluster keeps its mean B; a leaf of a transmitting polygon (with a twin) its mean B plus how the
-  // punctual lights' irradiance at the point departs from its mean on either side, times ρ and τ.
-  LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, bool transmitting = false);
+  // A cluster keeps its mean B; a leaf of a transmitting polygon (twin: its twin polygon, else kNoTwin)
+  // its mean B plus how the punctual lights' irradiance at the point departs, on either side, from
+  // what the solve took for it there (the leaf's D; the twin's D at the leaf's place), times ρ and τ.
+  LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint32_t twin = kNoTwin);
 
   // B at a point of the leaf; gathered: without direct light (the final gather adds it).
   Vec3 at(const Vec3& x, bool gathered = false) const;

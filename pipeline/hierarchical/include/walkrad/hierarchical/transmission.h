@@ -19,5 +19,7 @@ namespace walkrad {
 // area mean if the twin is finer there. Twins of one polygon split into the same regions, so each side
 // passes on exactly what the other received (the energy audit closes).
 Vec3 twin_received(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon);
+// Its punctual lights' part alone (D'), as twin_received() takes it.
+Vec3 twin_direct(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon);
 
 }  // namespace walkrad
