@@ -6,15 +6,17 @@
 // - Within 2 cm of each outline (1 cm outside it) the bake agrees with the reference: beside the lamp
 //   on the ceiling within 3% (issue 23's target; measured 1.2%, 2.7% before links took what they see
 //   of their sources, Link::seen); beside the box on the floor, where the box's vertical edges cast
-//   penumbrae into the corners, within 15% RMS (measured 7.8%; 8.4% before Link::seen, 11.7% before
+//   penumbrae into the corners, within 15% RMS (measured 4.8%; 8.1% when vertices were read a
+//   thousandth of the way into their faces instead of 5%, 8.4% before Link::seen, 11.7% before
 //   vertices took their own row in a closed scene; issue 23 asks 3%, which needs shadow boundaries in
 //   the mesh: discontinuity meshing, not built yet).
 // - In the box's penumbra on the floor (5 cm wide, where the lamp is partly hidden) the error is at
 //   most 2.5 times the error in the lit floor beyond it, or 2.5% where that is below 1% (measured
-//   2.36% against 0.60% with 65,536 reference paths a point; 2.23% against 0.83% before Link::seen,
-//   which brightened the indirect light by 0.2% everywhere; issue 23 asks 2×). Before the final
-//   gather's adaptive mesh ranked its splits, the penumbra was a 14 cm ramp, 13% off (2.7×); before
-//   the worst-first queue and 32² points per penumbra vertex, 4.2% against 1.8%.
+//   2.17% against 0.70% with 65,536 reference paths a point; 2.36% against 0.60% before 0e56ab2 (an
+//   overfilled row at a vertex taken from the sources seen in part); 2.23% against 0.83% before Link::seen;
+//   issue 23 asks 2×). Before the final gather's adaptive mesh ranked its splits, the penumbra was a
+//   14 cm ramp, 13% off (2.7×); before the worst-first queue and 32² points per penumbra vertex, 4.2%
+//   against 1.8%.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
