@@ -1,7 +1,7 @@
 # Fails when a runtime binary loads an offline-only library: the runtime must never link Embree,
-# OpenVDB or TBB (docs/architecture.md), directly or through a library it links.
+# OpenVDB, TBB or MPI (docs/architecture.md), directly or through a library it links.
 #   cmake -P check_no_offline_deps.cmake BINARY...
-set(forbidden embree openvdb tbb)
+set(forbidden embree openvdb tbb libmpi)
 math(EXPR last "${CMAKE_ARGC} - 1")
 if(last LESS 3)
   message(FATAL_ERROR "usage: cmake -P check_no_offline_deps.cmake BINARY...")

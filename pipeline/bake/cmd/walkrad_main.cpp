@@ -3,11 +3,14 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
+#include "walkrad/core/ranks.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_reader.h"
 #include "walkrad/formats/scene_writer.h"
@@ -170,9 +173,18 @@ int main(int argc, char** argv) {
     return rc == 0 ? kExitOk : kExitBadArguments;
   }
 
+  // Under mpirun (a bake over several ranks, walkrad/core/ranks.h) rank 0 reports and writes the bake;
+  // the others bake into a scratch folder of their own, removed afterwards. A failure on any rank ends
+  // them all with its exit code.
+  const Ranks rk = bake_cmd->parsed() ? start_ranks(&argc, &argv) : Ranks{};
+  auto finish = [&](int code) {
+    if (code != kExitOk && rk.size > 1) abort_ranks(code);
+    stop_ranks();
+    return code;
+  };
   try {
     if (bake_cmd->parsed()) {
-      bs.progress = !quiet;
+      bs.progress = !quiet && rk.rank == 0;
       bs.compress = !no_compression;
       if (!quality.empty()) bs.error = quality_error(quality);
       for (const std::string& e : effect_overrides) {
@@ -184,11 +196,22 @@ int main(int argc, char** argv) {
         std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
         bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
       }
+      if (rk.rank != 0) {
+        bs.output = (std::filesystem::temp_directory_path() /
+                     ("walkrad-rank-" + std::to_string(rk.rank) + "-" + std::to_string(::getpid())))
+                        .string();
+        with_web = false;
+      }
       if (with_web) check_web_viewer(default_web_viewer_dir());  // before the long work, not after it
       const BakeSummary s = bake(bs);
+      if (rk.rank != 0) {
+        std::filesystem::remove_all(bs.output);
+        return finish(kExitOk);
+      }
       if (with_web) install_web_viewer(s.output, default_web_viewer_dir());
-      std::printf("walkrad: baked %s: %zu elements, %zu triangles, %zu viewpoints, exposure %.4g, %.2f s\n",
-                  s.output.c_str(), s.elements, s.triangles, s.viewpoints, s.exposure, s.seconds);
+      std::printf("walkrad: baked %s: %zu elements, %zu triangles, %zu viewpoints, exposure %.4g, %.2f s%s\n",
+                  s.output.c_str(), s.elements, s.triangles, s.viewpoints, s.exposure, s.seconds,
+                  rk.size > 1 ? (", " + std::to_string(rk.size) + " ranks").c_str() : "");
     }
     if (sweep_cmd->parsed()) {
       ss.plots = !no_plots;
@@ -229,15 +252,15 @@ int main(int argc, char** argv) {
       std::printf("walkrad: web viewer in %s: serve the folder (cd %s && python3 -m http.server) and open http://localhost:8000/\n",
                   web_dir.c_str(), web_dir.c_str());
     }
-    return kExitOk;
+    return finish(kExitOk);
   } catch (const InputError& e) {
     std::fprintf(stderr, "walkrad: error: %s\n", e.what());
-    return e.code();
+    return finish(e.code());
   } catch (const OutputError& e) {
     std::fprintf(stderr, "walkrad: error: %s\n", e.what());
-    return kExitOutputFailure;
+    return finish(kExitOutputFailure);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "walkrad: internal error: %s\n", e.what());
-    return kExitInternal;
+    return finish(kExitInternal);
   }
 }

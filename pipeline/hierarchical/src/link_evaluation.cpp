@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "walkrad/core/ranks.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/formfactor/form_factor.h"
 
@@ -46,13 +49,69 @@ void Solver::compute_missing_direct() {
   direct_for(missing);
 }
 
+namespace {
+
+// What evaluating a pending link finds, as it travels between ranks.
+struct Evaluated {
+  double F;
+  float sigma, open;
+  std::array<float, 4> share;
+  std::array<uint16_t, 4> seen;
+  uint64_t rays, grid_segments;
+};
+
+}  // namespace
+
 void Solver::evaluate_pending(IterationStats& is) {
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+  // Under mpirun each rank evaluates one contiguous block of the round's links, of about equal cost
+  // (rays or samples, plus one), and every rank gathers every block (ranks.h): the links and their
+  // order are the same on every rank, and so is each link's result.
+  const Ranks& rk = ranks();
+  size_t begin = 0, end = pending_.size();
+  if (rk.size > 1) {
+    double total = 0;
+    for (const Pending& p : pending_) total += 1.0 + p.samples;
+    double before = 0;
+    begin = end = pending_.size();
+    for (size_t k = 0; k < pending_.size(); ++k) {
+      const int owner = std::min(rk.size - 1, int(before * rk.size / total));
+      if (owner == rk.rank && begin == pending_.size()) begin = k;
+      if (owner > rk.rank) {
+        end = k;
+        break;
+      }
+      before += 1.0 + pending_[k].samples;
+    }
+    if (begin == pending_.size()) end = begin;
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RayScene::Segment> segments;
     std::vector<double> visible;
     std::vector<double> weights;
     for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
   });
+  if (rk.size > 1) {
+    std::vector<uint8_t> mine((end - begin) * sizeof(Evaluated));
+    for (size_t k = begin; k < end; ++k) {
+      const Pending& p = pending_[k];
+      const Evaluated e{p.F, p.sigma, p.open, p.share, p.seen, p.rays, p.grid_segments};
+      std::memcpy(mine.data() + (k - begin) * sizeof(Evaluated), &e, sizeof(Evaluated));
+    }
+    const std::vector<uint8_t> all = all_gather(mine);
+    if (all.size() != pending_.size() * sizeof(Evaluated)) throw std::runtime_error("ranks disagree on the links to evaluate");
+    for (size_t k = 0; k < pending_.size(); ++k) {
+      Evaluated e;
+      std::memcpy(&e, all.data() + k * sizeof(Evaluated), sizeof(Evaluated));
+      Pending& p = pending_[k];
+      p.F = e.F;
+      p.sigma = e.sigma;
+      p.open = e.open;
+      p.share = e.share;
+      p.seen = e.seen;
+      p.rays = e.rays;
+      p.grid_segments = e.grid_segments;
+    }
+  }
   for (const Pending& p : pending_) {
     stats_.rays += p.rays;
     is.rays += p.rays;

@@ -1,0 +1,63 @@
+#include "walkrad/core/ranks.h"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include <mpi.h>
+
+namespace walkrad {
+
+namespace {
+
+Ranks g_ranks;
+bool g_started = false;
+uint64_t g_bytes = 0;
+
+}  // namespace
+
+Ranks start_ranks(int* argc, char*** argv) {
+  const char* world = std::getenv("OMPI_COMM_WORLD_SIZE");
+  if (!world || std::atoi(world) < 1 || g_started) return g_ranks;
+  int provided = 0;
+  // Threads (TBB) run inside each rank, but only the main thread calls MPI.
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  g_started = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &g_ranks.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &g_ranks.size);
+  return g_ranks;
+}
+
+void stop_ranks() {
+  if (!g_started) return;
+  MPI_Finalize();
+  g_started = false;
+}
+
+void abort_ranks(int code) {
+  if (g_started && g_ranks.size > 1) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+const Ranks& ranks() { return g_ranks; }
+
+std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
+  if (!g_started || g_ranks.size == 1) return mine;
+  if (mine.size() > size_t(INT32_MAX)) throw std::runtime_error("all_gather: more than 2 GB from one rank");
+  const int count = int(mine.size());
+  std::vector<int> counts(size_t(g_ranks.size)), offsets(size_t(g_ranks.size));
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  int64_t total = 0;
+  for (size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = int(total);
+    total += counts[r];
+  }
+  if (total > int64_t(INT32_MAX)) throw std::runtime_error("all_gather: more than 2 GB in all");
+  std::vector<uint8_t> all(static_cast<size_t>(total));
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+  g_bytes += uint64_t(count) + uint64_t(total - count);
+  return all;
+}
+
+uint64_t ranks_bytes_exchanged() { return g_bytes; }
+
+}  // namespace walkrad

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""A bake over several ranks (issue 28, walkrad/core/ranks.h): the Cornell box (defaults) and a 2-room
+office-floor level (draft) baked with mpirun at 1, 2 and 3 ranks (one thread each) give chunks and a manifest byte-identical
+to the plain bake's, report the ranks and the bytes they exchanged, and leave no scratch folder; a scene
+no rank can read ends every rank with the reader's exit code and writes nothing.
+Usage: test_ranks.py WALKRAD SOURCE_DIR WORK_DIR"""
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+walkrad, source, work = sys.argv[1:4]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+mpirun = ["mpirun", "--oversubscribe", "--bind-to", "none"]
+failures = []
+
+office = os.path.join(work, "office")
+subprocess.run([sys.executable, os.path.join(source, "examples/office-floor/make_office_floor.py"), "--rooms", "2",
+                "--detail", "0.05", "--out", office], check=True, stdout=subprocess.DEVNULL)
+scenes = {"cornell": [os.path.join(source, "examples/cornell-box/cornell-box.gltf")],
+          # At the draft error: the same code as the default's, a seventh of its links (a CI budget).
+          "office": [os.path.join(office, "office-floor-2.glb"), "--views", os.path.join(office, "office-floor-2-walkthrough.json"),
+                     "--quality", "draft"]}
+
+
+def files(folder):
+    return sorted(os.path.basename(p) for p in glob.glob(os.path.join(folder, "chunk-*.glb"))) + ["manifest.json"]
+
+
+def same(a, b):
+    return all(open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read() for f in files(a)) and files(a) == files(b)
+
+
+scratch_before = set(glob.glob(os.path.join(tempfile.gettempdir(), "walkrad-rank-*")))
+for name, args in scenes.items():
+    plain = os.path.join(work, name + "-plain")
+    subprocess.run([walkrad, "bake", *args, "-o", plain, "-q", "--threads", "1"], check=True, stdout=subprocess.DEVNULL)
+    for n in (1, 2, 3):
+        out = os.path.join(work, f"{name}-{n}")
+        r = subprocess.run(mpirun + ["-np", str(n), walkrad, "bake", *args, "-o", out, "-q", "--threads", "1"],
+                           capture_output=True, text=True, env=env)
+        if r.returncode != 0:
+            failures.append(f"{name}, {n} ranks: exit {r.returncode}: {r.stderr.strip()[-300:]}")
+            continue
+        counts = json.load(open(os.path.join(out, "report.json")))["counts"]
+        print(f"{name}, {n} ranks: {counts['links']} links, {counts['rank_bytes_exchanged']} bytes exchanged")
+        if not same(plain, out):
+            failures.append(f"{name}, {n} ranks: the bake differs from one process's")
+        if counts["ranks"] != n or (n > 1) != (counts["rank_bytes_exchanged"] > 0):
+            failures.append(f"{name}, {n} ranks: report says {counts['ranks']} ranks, {counts['rank_bytes_exchanged']} bytes")
+left = set(glob.glob(os.path.join(tempfile.gettempdir(), "walkrad-rank-*"))) - scratch_before
+if left:
+    failures.append("scratch folders left: " + ", ".join(sorted(left)))
+
+# A scene no rank can read: every rank stops with the reader's exit code (2, bad input), nothing written.
+missing = os.path.join(work, "missing")
+r = subprocess.run(mpirun + ["-np", "2", walkrad, "bake", os.path.join(work, "no-such-scene.gltf"), "-o", missing, "-q"],
+                   capture_output=True, text=True, env=env, timeout=120)
+print(f"unreadable scene, 2 ranks: exit {r.returncode}")
+if r.returncode == 0 or os.path.exists(missing):
+    failures.append(f"an unreadable scene over 2 ranks: exit {r.returncode}, output {'written' if os.path.exists(missing) else 'absent'}")
+if "no-such-scene.gltf" not in r.stderr:
+    failures.append("the error does not name the scene: " + r.stderr.strip()[-300:])
+for f in failures:
+    print("FAIL:", f)
+sys.exit(1 if failures else 0)
