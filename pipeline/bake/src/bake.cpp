@@ -18,6 +18,7 @@
 #include "walkrad/formats/gltf_reader.h"
 #include "walkrad/formats/manifest.h"
 #include "walkrad/formats/walkthrough.h"
+#include "walkrad/core/ranks.h"
 #include "walkrad/core/file_hash.h"
 #include "walkrad/core/staged_output.h"
 #include "walkrad/output/chunk_optimizer.h"
@@ -260,6 +261,8 @@ BakeSummary bake(const BakeSettings& s) {
   counts["chunk_importance_rays"] = chunk_rays;
   counts["viewpoints"] = views.size();
   counts["dropped_degenerate"] = input.dropped_degenerate;
+  counts["ranks"] = ranks().size;  // under mpirun (walkrad/core/ranks.h); the solve's and the mesh's exchanges
+  counts["rank_bytes_exchanged"] = ranks_bytes_exchanged();
   json report = {
       {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "method_run.h"
-#include "walkrad/core/ranks.h"
 #include "walkrad/core/progress.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
@@ -196,8 +195,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
               {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},
               {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()},
-              {"light_rays", stats.light_rays}, {"light_refinements", stats.light_refinements},
-              {"ranks", ranks().size}, {"rank_bytes_exchanged", ranks_bytes_exchanged()}};
+              {"light_rays", stats.light_rays}, {"light_refinements", stats.light_refinements}};
   r.solver = {{"estimated_error", error_estimate(*h, hits, views.size())},
               {"iteration", s.solver},
               {"oracle", stats.oracle}, {"error", s.error}, {"white", stats.white}, {"min_area", stats.min_area},

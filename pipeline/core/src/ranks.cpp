@@ -60,4 +60,20 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
 
 uint64_t ranks_bytes_exchanged() { return g_bytes; }
 
+std::vector<size_t> rank_blocks(size_t n, const std::function<double(size_t)>& cost) {
+  const int size = g_ranks.size;
+  std::vector<size_t> blocks(size_t(size) + 1, n);
+  blocks[0] = 0;
+  if (size == 1) return blocks;
+  double total = 0;
+  for (size_t k = 0; k < n; ++k) total += cost(k);
+  double before = 0;
+  int next = 1;  // the block whose start comes next
+  for (size_t k = 0; k < n && next < size; ++k) {
+    while (next < size && before >= total * next / size) blocks[size_t(next++)] = k;
+    before += cost(k);
+  }
+  return blocks;
+}
+
 }  // namespace walkrad

@@ -5,8 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <stdexcept>
+#include <tuple>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -67,23 +66,8 @@ void Solver::evaluate_pending(IterationStats& is) {
   // (rays or samples, plus one), and every rank gathers every block (ranks.h): the links and their
   // order are the same on every rank, and so is each link's result.
   const Ranks& rk = ranks();
-  size_t begin = 0, end = pending_.size();
-  if (rk.size > 1) {
-    double total = 0;
-    for (const Pending& p : pending_) total += 1.0 + p.samples;
-    double before = 0;
-    begin = end = pending_.size();
-    for (size_t k = 0; k < pending_.size(); ++k) {
-      const int owner = std::min(rk.size - 1, int(before * rk.size / total));
-      if (owner == rk.rank && begin == pending_.size()) begin = k;
-      if (owner > rk.rank) {
-        end = k;
-        break;
-      }
-      before += 1.0 + pending_[k].samples;
-    }
-    if (begin == pending_.size()) end = begin;
-  }
+  const std::vector<size_t> blocks = rank_blocks(pending_.size(), [&](size_t k) { return 1.0 + pending_[k].samples; });
+  const size_t begin = blocks[size_t(rk.rank)], end = blocks[size_t(rk.rank) + 1];
   tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RayScene::Segment> segments;
     std::vector<double> visible;
@@ -91,25 +75,17 @@ void Solver::evaluate_pending(IterationStats& is) {
     for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
   });
   if (rk.size > 1) {
-    std::vector<uint8_t> mine((end - begin) * sizeof(Evaluated));
+    std::vector<Evaluated> found(pending_.size());
     for (size_t k = begin; k < end; ++k) {
       const Pending& p = pending_[k];
-      const Evaluated e{p.F, p.sigma, p.open, p.share, p.seen, p.rays, p.grid_segments};
-      std::memcpy(mine.data() + (k - begin) * sizeof(Evaluated), &e, sizeof(Evaluated));
+      found[k] = {p.F, p.sigma, p.open, p.share, p.seen, p.rays, p.grid_segments};
     }
-    const std::vector<uint8_t> all = all_gather(mine);
-    if (all.size() != pending_.size() * sizeof(Evaluated)) throw std::runtime_error("ranks disagree on the links to evaluate");
+    share_blocks(found, blocks);
     for (size_t k = 0; k < pending_.size(); ++k) {
-      Evaluated e;
-      std::memcpy(&e, all.data() + k * sizeof(Evaluated), sizeof(Evaluated));
       Pending& p = pending_[k];
-      p.F = e.F;
-      p.sigma = e.sigma;
-      p.open = e.open;
-      p.share = e.share;
-      p.seen = e.seen;
-      p.rays = e.rays;
-      p.grid_segments = e.grid_segments;
+      const Evaluated& e = found[k];
+      std::tie(p.F, p.sigma, p.open, p.share, p.seen, p.rays, p.grid_segments) =
+          std::tie(e.F, e.sigma, e.open, e.share, e.seen, e.rays, e.grid_segments);
     }
   }
   for (const Pending& p : pending_) {

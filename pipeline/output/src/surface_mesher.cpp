@@ -1,4 +1,5 @@
 #include "walkrad/output/surface_mesher.h"
+#include "walkrad/core/ranks.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -191,7 +192,11 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) gathered[face_slots[j]] = 1;
   std::vector<Vec3> value(boundary.size()), centre_value(faces.size());
   if (at) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    // Under mpirun each rank evaluates one block of the faces (by their corners) and shares it (ranks.h).
+    const std::vector<size_t> blocks =
+        rank_blocks(faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); });
+    const size_t mine = size_t(ranks().rank);
+    tbb::parallel_for(tbb::blocked_range<size_t>(blocks[mine], blocks[mine + 1], 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         const Vec3 c = polygon_centroid(faces[i].shape);
         const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
@@ -205,6 +210,10 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
           value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * kInward, gathered[face_slots[j]]);
       }
     });
+    share_blocks(centre_value, blocks);
+    std::vector<size_t> corner_blocks;
+    for (size_t b : blocks) corner_blocks.push_back(boundary_begin[b]);
+    share_blocks(value, corner_blocks);
   }
   std::vector<Vec3> sum(slots), rho(slots);
   std::vector<double> weight(slots, 0.0);
@@ -223,14 +232,19 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
     for (size_t i = 0; i < faces.size(); ++i)
       for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) members[fill[face_slots[j]]++] = uint32_t(i);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, slots, 64), [&](const tbb::blocked_range<size_t>& r) {
+    const std::vector<size_t> blocks = rank_blocks(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; });
+    const size_t mine = size_t(ranks().rank);
+    std::vector<Vec3> direct(slots);
+    tbb::parallel_for(tbb::blocked_range<size_t>(blocks[mine], blocks[mine + 1], 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t s = r.begin(); s != r.end(); ++s) {
         if (!gathered[s]) continue;
         const uint32_t* f = members.data() + begin[s];
-        const Vec3 D = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
-        sum[s] += mul(rho[s], D);  // ρ summed by area as sum is: both divided by weight below
+        direct[s] = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
       }
     });
+    share_blocks(direct, blocks);
+    for (size_t s = 0; s < slots; ++s)
+      if (gathered[s]) sum[s] += mul(rho[s], direct[s]);  // ρ summed by area as sum is: both divided by weight below
   }
 
   // 5. Output: vertices in order of first use, then each face's triangles (a fan from its centre

@@ -1,14 +1,19 @@
 // The ranks of a bake run under mpirun (issue 28): Open MPI's MPI_COMM_WORLD, or one rank without it.
 // Without mpirun MPI is never started, and everything runs as one process does.
 //
-// What is divided so far: the evaluation of each refinement round's new links (link_evaluation.cpp),
-// by contiguous blocks of about equal cost in the round's own order, each rank's results gathered by
-// every rank (MPI_Allgatherv). Each link's evaluation depends only on its two nodes (its random numbers
-// are seeded by them), so the bake does not depend on the number of ranks. Everything else (the scene,
-// the refinement, the sweeps, the meshing) is replicated; rank 0 alone writes the bake.
+// What is divided so far: the evaluation of each refinement round's new links (link_evaluation.cpp)
+// and of the output vertices' radiosity (surface_mesher.cpp), by contiguous blocks of about equal cost
+// in their own order, each rank's results gathered by every rank (MPI_Allgatherv). Each result depends
+// only on its own inputs (a link's random numbers are seeded by its two nodes, a vertex's by its
+// position), so the bake does not depend on the number of ranks. Everything else (the scene, the
+// refinement, the sweeps) is replicated; rank 0 alone writes the bake (docs/scaling.md).
 #pragma once
 
 #include <cstdint>
+#include <cstring>
+#include <functional>
+#include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace walkrad {
@@ -32,5 +37,23 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 
 // Bytes this process has sent and received through all_gather (report.json).
 uint64_t ranks_bytes_exchanged();
+
+// [0, n) cut into one contiguous block per rank, in order, of about equal total cost (cost(k) > 0 for
+// item k): the block boundaries, ranks().size + 1 of them. Every rank computes the same ones.
+std::vector<size_t> rank_blocks(size_t n, const std::function<double(size_t)>& cost);
+
+// v[blocks[r], blocks[r + 1]) from rank r to every rank (this rank's block is already in v). T is
+// trivially copyable; with one rank nothing happens.
+template <class T>
+void share_blocks(std::vector<T>& v, const std::vector<size_t>& blocks) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  if (ranks().size == 1) return;
+  const size_t b = blocks[size_t(ranks().rank)], e = blocks[size_t(ranks().rank) + 1];
+  std::vector<uint8_t> mine((e - b) * sizeof(T));
+  if (e > b) std::memcpy(mine.data(), v.data() + b, mine.size());
+  const std::vector<uint8_t> all = all_gather(mine);
+  if (all.size() != blocks.back() * sizeof(T)) throw std::runtime_error("ranks disagree on the blocks they share");
+  if (!all.empty()) std::memcpy(v.data(), all.data(), all.size());
+}
 
 }  // namespace walkrad
