@@ -47,7 +47,11 @@ for name, args in scenes.items():
         if r.returncode != 0:
             failures.append(f"{name}, {n} ranks: exit {r.returncode}: {r.stderr.strip()[-300:]}")
             continue
-        counts = json.load(open(os.path.join(out, "report.json")))["counts"]
+        report = json.load(open(os.path.join(out, "report.json")))
+        counts, shares = report["counts"], report["ranks"]
+        if shares["count"] != n or len(shares["per_rank"]) != n or not 1 <= shares["balance"] < 2 or \
+                sum(r["items"] for r in shares["per_rank"]) == 0:
+            failures.append(f"{name}, {n} ranks: report's ranks {shares}")
         print(f"{name}, {n} ranks: {counts['links']} links, {counts['rank_bytes_exchanged']} bytes exchanged")
         if not same(plain, out):
             failures.append(f"{name}, {n} ranks: the bake differs from one process's")

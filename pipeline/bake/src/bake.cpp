@@ -263,11 +263,23 @@ BakeSummary bake(const BakeSettings& s) {
   counts["dropped_degenerate"] = input.dropped_degenerate;
   counts["ranks"] = ranks().size;  // under mpirun (walkrad/core/ranks.h); the solve's and the mesh's exchanges
   counts["rank_bytes_exchanged"] = ranks_bytes_exchanged();
+  // Every rank's share of the divided work, and its balance: the busiest rank's compute time over the
+  // mean (1: even). A collective call, made by every rank here.
+  json per_rank = json::array();
+  double busiest = 0, mean = 0;
+  const std::vector<RankWork> work = all_rank_work();
+  for (size_t r = 0; r < work.size(); ++r) {
+    per_rank.push_back({{"rank", r}, {"items", work[r].items}, {"compute_seconds", work[r].compute_seconds},
+                        {"exchange_seconds", work[r].exchange_seconds}, {"bytes_sent", work[r].bytes_sent}});
+    busiest = std::max(busiest, work[r].compute_seconds);
+    mean += work[r].compute_seconds / double(work.size());
+  }
   json report = {
       {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
       {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
       {"volumes", volumes_report},
+      {"ranks", {{"count", ranks().size}, {"balance", mean > 0 ? busiest / mean : 1.0}, {"per_rank", per_rank}}},
   };
   write_json(out.path("report.json"), report);
   out.commit();

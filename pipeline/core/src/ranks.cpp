@@ -1,6 +1,8 @@
 #include "walkrad/core/ranks.h"
 
+#include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 #include <mpi.h>
@@ -12,6 +14,7 @@ namespace {
 Ranks g_ranks;
 bool g_started = false;
 uint64_t g_bytes = 0;
+RankWork g_work;
 
 }  // namespace
 
@@ -53,12 +56,26 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
   }
   if (total > int64_t(INT32_MAX)) throw std::runtime_error("all_gather: more than 2 GB in all");
   std::vector<uint8_t> all(static_cast<size_t>(total));
+  const auto start = std::chrono::steady_clock::now();
   MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+  g_work.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  g_work.bytes_sent += uint64_t(count);
   g_bytes += uint64_t(count) + uint64_t(total - count);
   return all;
 }
 
 uint64_t ranks_bytes_exchanged() { return g_bytes; }
+
+RankWork& rank_work() { return g_work; }
+
+std::vector<RankWork> all_rank_work() {
+  std::vector<uint8_t> mine(sizeof(RankWork));
+  std::memcpy(mine.data(), &g_work, sizeof(RankWork));
+  const std::vector<uint8_t> all = all_gather(mine);
+  std::vector<RankWork> out(all.size() / sizeof(RankWork));
+  if (!out.empty()) std::memcpy(out.data(), all.data(), out.size() * sizeof(RankWork));
+  return out;
+}
 
 std::vector<size_t> rank_blocks(size_t n, const std::function<double(size_t)>& cost) {
   const int size = g_ranks.size;

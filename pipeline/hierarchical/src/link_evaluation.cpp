@@ -4,6 +4,7 @@
 #include "solver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <tuple>
 
@@ -68,12 +69,15 @@ void Solver::evaluate_pending(IterationStats& is) {
   const Ranks& rk = ranks();
   const std::vector<size_t> blocks = rank_blocks(pending_.size(), [&](size_t k) { return 1.0 + pending_[k].samples; });
   const size_t begin = blocks[size_t(rk.rank)], end = blocks[size_t(rk.rank) + 1];
+  const auto start = std::chrono::steady_clock::now();
   tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RayScene::Segment> segments;
     std::vector<double> visible;
     std::vector<double> weights;
     for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
   });
+  rank_work().items += end - begin;
+  rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (rk.size > 1) {
     std::vector<Evaluated> found(pending_.size());
     for (size_t k = begin; k < end; ++k) {

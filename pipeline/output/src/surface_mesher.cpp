@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -196,6 +197,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     const std::vector<size_t> blocks =
         rank_blocks(faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); });
     const size_t mine = size_t(ranks().rank);
+    const auto start = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range<size_t>(blocks[mine], blocks[mine + 1], 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         const Vec3 c = polygon_centroid(faces[i].shape);
@@ -210,6 +212,8 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
           value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * kInward, gathered[face_slots[j]]);
       }
     });
+    rank_work().items += blocks[mine + 1] - blocks[mine];
+    rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     share_blocks(centre_value, blocks);
     std::vector<size_t> corner_blocks;
     for (size_t b : blocks) corner_blocks.push_back(boundary_begin[b]);
@@ -235,6 +239,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     const std::vector<size_t> blocks = rank_blocks(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; });
     const size_t mine = size_t(ranks().rank);
     std::vector<Vec3> direct(slots);
+    const auto start = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range<size_t>(blocks[mine], blocks[mine + 1], 64), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t s = r.begin(); s != r.end(); ++s) {
         if (!gathered[s]) continue;
@@ -242,6 +247,8 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
         direct[s] = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
       }
     });
+    rank_work().items += blocks[mine + 1] - blocks[mine];
+    rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     share_blocks(direct, blocks);
     for (size_t s = 0; s < slots; ++s)
       if (gathered[s]) sum[s] += mul(rho[s], direct[s]);  // ρ summed by area as sum is: both divided by weight below

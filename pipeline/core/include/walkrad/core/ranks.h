@@ -38,6 +38,17 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 // Bytes this process has sent and received through all_gather (report.json).
 uint64_t ranks_bytes_exchanged();
 
+// What one rank did of the divided work (report.json "ranks"): the items it evaluated (links, faces,
+// vertices), the seconds it spent on them and in the exchanges (waiting for the others included), and
+// the bytes it sent.
+struct RankWork {
+  uint64_t items = 0, bytes_sent = 0;
+  double compute_seconds = 0, exchange_seconds = 0;
+};
+RankWork& rank_work();  // this rank's, added to by the divided stages
+// Every rank's, in rank order (a collective call: every rank makes it at the same point).
+std::vector<RankWork> all_rank_work();
+
 // [0, n) cut into one contiguous block per rank, in order, of about equal total cost (cost(k) > 0 for
 // item k): the block boundaries, ranks().size + 1 of them. Every rank computes the same ones.
 std::vector<size_t> rank_blocks(size_t n, const std::function<double(size_t)>& cost);
