@@ -261,10 +261,8 @@ BakeSummary bake(const BakeSettings& s) {
   counts["chunk_importance_rays"] = chunk_rays;
   counts["viewpoints"] = views.size();
   counts["dropped_degenerate"] = input.dropped_degenerate;
-  counts["ranks"] = ranks().size;  // under mpirun (walkrad/core/ranks.h); the solve's and the mesh's exchanges
-  counts["rank_bytes_exchanged"] = ranks_bytes_exchanged();
-  // Every rank's share of the divided work, and its balance: the busiest rank's compute time over the
-  // mean (1: even). A collective call, made by every rank here.
+  // Under mpirun (walkrad/core/ranks.h): every rank's share of the divided work, and its balance: the
+  // busiest rank's compute time over the mean (1: even). A collective call, made by every rank here.
   json per_rank = json::array();
   double busiest = 0, mean = 0;
   const std::vector<RankWork> work = all_rank_work();
@@ -279,7 +277,8 @@ BakeSummary bake(const BakeSettings& s) {
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
       {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
       {"volumes", volumes_report},
-      {"ranks", {{"count", ranks().size}, {"balance", mean > 0 ? busiest / mean : 1.0}, {"per_rank", per_rank}}},
+      {"ranks", {{"count", ranks().size}, {"balance", mean > 0 ? busiest / mean : 1.0},
+                 {"bytes_exchanged", ranks_bytes_exchanged()}, {"per_rank", per_rank}}},
   };
   write_json(out.path("report.json"), report);
   out.commit();

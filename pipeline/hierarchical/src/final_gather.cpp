@@ -191,7 +191,7 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
   if ((g.emitter_count() == 0 && !g.has_lights()) || r.white <= 0) return 0;
   auto twin_of = [&](const HNode& n) { return r.twins ? (*r.twins)[n.polygon] : kNoTwin; };
   auto tau_of = [&](const HNode& n) {
-    return twin_of(n) == kNoTwin ? Vec3{} : h.scene().materials[h.scene().polygons[n.polygon].material].transmittance;
+    return twin_of(n) == kNoTwin ? Vec3{} : material_transmittance(h, n);
   };
   std::vector<uint32_t> batch;
   for (uint32_t i = 0; i < h.nodes().size(); ++i) {

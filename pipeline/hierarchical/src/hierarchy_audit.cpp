@@ -30,7 +30,7 @@ void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, DirectionalIrradiance
     if (n.cluster) return;
     AuditElement e{n.area, n.rho, n.emission, n.B, down * n.receive + n.D, carried * n.send, n.D};
     if (twins && (*twins)[n.polygon] != kNoTwin) {  // what passes through from the other side
-      e.tau = h.scene().materials[h.scene().polygons[n.polygon].material].transmittance;
+      e.tau = material_transmittance(h, n);
       e.H_twin = twin_received(h, n, (*twins)[n.polygon]);
     }
     add_to_audit(audit, e);

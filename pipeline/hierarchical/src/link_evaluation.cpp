@@ -4,9 +4,7 @@
 #include "solver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <tuple>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -20,10 +18,10 @@ namespace walkrad::hierarchical_detail {
 std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
   std::vector<double> spread(elements.size(), 0.0);
   std::vector<uint64_t> rays(elements.size(), 0);
+  const RayScene* occluders = s_.visibility ? &rays_ : nullptr;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end(); ++k) {
       HNode& n = h_[elements[k]];
-      const RayScene* occluders = s_.visibility ? &rays_ : nullptr;
       const DirectIrradiance d = direct_irradiance(n.shape, *s_.lights, occluders, 4, rays[k]);
       n.D = d.mean;
       n.D_known = true;
@@ -49,49 +47,20 @@ void Solver::compute_missing_direct() {
   direct_for(missing);
 }
 
-namespace {
-
-// What evaluating a pending link finds, as it travels between ranks.
-struct Evaluated {
-  double F;
-  float sigma, open;
-  std::array<float, 4> share;
-  std::array<uint16_t, 4> seen;
-  uint64_t rays, grid_segments;
-};
-
-}  // namespace
-
 void Solver::evaluate_pending(IterationStats& is) {
   // Under mpirun each rank evaluates one contiguous block of the round's links, of about equal cost
   // (rays or samples, plus one), and every rank gathers every block (ranks.h): the links and their
   // order are the same on every rank, and so is each link's result.
-  const Ranks& rk = ranks();
-  const std::vector<size_t> blocks = rank_blocks(pending_.size(), [&](size_t k) { return 1.0 + pending_[k].samples; });
-  const size_t begin = blocks[size_t(rk.rank)], end = blocks[size_t(rk.rank) + 1];
-  const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
-    std::vector<RayScene::Segment> segments;
-    std::vector<double> visible;
-    std::vector<double> weights;
-    for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
-  });
-  rank_work().items += end - begin;
-  rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (rk.size > 1) {
-    std::vector<Evaluated> found(pending_.size());
-    for (size_t k = begin; k < end; ++k) {
-      const Pending& p = pending_[k];
-      found[k] = {p.F, p.sigma, p.open, p.share, p.seen, p.rays, p.grid_segments};
-    }
-    share_blocks(found, blocks);
-    for (size_t k = 0; k < pending_.size(); ++k) {
-      Pending& p = pending_[k];
-      const Evaluated& e = found[k];
-      std::tie(p.F, p.sigma, p.open, p.share, p.seen, p.rays, p.grid_segments) =
-          std::tie(e.F, e.sigma, e.open, e.share, e.seen, e.rays, e.grid_segments);
-    }
-  }
+  const std::vector<size_t> blocks =
+      run_my_block(pending_.size(), [&](size_t k) { return 1.0 + pending_[k].samples; }, [&](size_t begin, size_t end) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
+          std::vector<RayScene::Segment> segments;
+          std::vector<double> visible;
+          std::vector<double> weights;
+          for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
+        });
+      });
+  share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
   for (const Pending& p : pending_) {
     stats_.rays += p.rays;
     is.rays += p.rays;

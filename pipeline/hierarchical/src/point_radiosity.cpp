@@ -83,7 +83,7 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint3
     // shade's outside in lamp-room came out flattened, the bright middle below τ D alone (17% off).
     const HNode& n = h_[leaf];
     if (twin == kNoTwin || !clusters.lights()) return;
-    tau_ = clusters.hierarchy().scene().materials[clusters.hierarchy().scene().polygons[n.polygon].material].transmittance;
+    tau_ = material_transmittance(h_, n);
     D_front_ = n.D;
     D_back_ = twin_direct(h_, n, twin);
     lit_sides_ = true;

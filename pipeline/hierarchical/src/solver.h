@@ -132,12 +132,12 @@ class Solver {
   // τ of an element's material when transmission is simulated (else 0).
   Vec3 transmittance(const HNode& n) const {
     if (!s_.twins || n.cluster || (*s_.twins)[n.polygon] == kNoTwin) return {};
-    return h_.scene().materials[h_.scene().polygons[n.polygon].material].transmittance;
+    return material_transmittance(h_, n);
   }
   Vec3 twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
   // The importance of the twin's node at n's place, by n's share of its area (as last pushed).
   double twin_importance(const HNode& n) const {
-    const uint32_t t = leaf_at(h_, h_.polygon_root((*s_.twins)[n.polygon]), polygon_centroid(n.shape), n.depth);
+    const uint32_t t = twin_node(h_, n, (*s_.twins)[n.polygon]);
     return h_[t].area > 0 ? h_[t].I * std::min(1.0, n.area / h_[t].area) : 0.0;
   }
   const std::vector<PunctualLight>* lights() const { return s_.lights && !s_.lights->empty() ? s_.lights : nullptr; }

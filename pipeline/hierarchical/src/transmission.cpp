@@ -22,13 +22,20 @@ Vec3 mean_received(const Hierarchy& h, uint32_t node, bool links, double& area) 
 }
 
 Vec3 twin_mean(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon, bool links) {
-  const uint32_t node = leaf_at(h, h.polygon_root(twin_polygon), polygon_centroid(leaf.shape), leaf.depth);
   double area = 0;
-  const Vec3 sum = mean_received(h, node, links, area);
+  const Vec3 sum = mean_received(h, twin_node(h, leaf, twin_polygon), links, area);
   return area > 0 ? sum / area : Vec3{};
 }
 
 }  // namespace
+
+uint32_t twin_node(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon) {
+  return leaf_at(h, h.polygon_root(twin_polygon), polygon_centroid(leaf.shape), leaf.depth);
+}
+
+Vec3 material_transmittance(const Hierarchy& h, const HNode& element) {
+  return h.scene().materials[h.scene().polygons[element.polygon].material].transmittance;
+}
 
 Vec3 twin_received(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon) { return twin_mean(h, leaf, twin_polygon, true); }
 

@@ -67,7 +67,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     Cached& c = cache.local();
     const uint32_t i = leaf[face];
     if (c.leaf != i) {
-      c.radiosity = std::make_unique<LeafRadiosity>(clusters, i, transmitting(h[i].polygon) ? (*point.twins)[h[i].polygon] : kNoTwin);
+      c.radiosity = std::make_unique<LeafRadiosity>(clusters, i, point.twins ? (*point.twins)[h[i].polygon] : kNoTwin);
       c.leaf = i;
     }
     return c.radiosity->at(x, gathered);

@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -194,26 +193,24 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   std::vector<Vec3> value(boundary.size()), centre_value(faces.size());
   if (at) {
     // Under mpirun each rank evaluates one block of the faces (by their corners) and shares it (ranks.h).
-    const std::vector<size_t> blocks =
-        rank_blocks(faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); });
-    const size_t mine = size_t(ranks().rank);
-    const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range<size_t>(blocks[mine], blocks[mine + 1], 64), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        const Vec3 c = polygon_centroid(faces[i].shape);
-        const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
-        if (fanned) {
-          const bool seen = gathering && face_seen[i];
-          const uint32_t self = uint32_t(i);
-          centre_value[i] = at(i, c, seen);
-          if (seen) centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
-        }
-        for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
-          value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * kInward, gathered[face_slots[j]]);
-      }
-    });
-    rank_work().items += blocks[mine + 1] - blocks[mine];
-    rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::vector<size_t> blocks = run_my_block(
+        faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); },
+        [&](size_t first, size_t last) {
+          tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+              const Vec3 c = polygon_centroid(faces[i].shape);
+              const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
+              if (fanned) {
+                const bool seen = gathering && face_seen[i];
+                const uint32_t self = uint32_t(i);
+                centre_value[i] = at(i, c, seen);
+                if (seen) centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
+              }
+              for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
+                value[j] = at(i, points[boundary[j]] + (c - points[boundary[j]]) * kInward, gathered[face_slots[j]]);
+            }
+          });
+        });
     share_blocks(centre_value, blocks);
     std::vector<size_t> corner_blocks;
     for (size_t b : blocks) corner_blocks.push_back(boundary_begin[b]);
@@ -236,19 +233,17 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
     for (size_t i = 0; i < faces.size(); ++i)
       for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) members[fill[face_slots[j]]++] = uint32_t(i);
-    const std::vector<size_t> blocks = rank_blocks(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; });
-    const size_t mine = size_t(ranks().rank);
     std::vector<Vec3> direct(slots);
-    const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range<size_t>(blocks[mine], blocks[mine + 1], 64), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t s = r.begin(); s != r.end(); ++s) {
-        if (!gathered[s]) continue;
-        const uint32_t* f = members.data() + begin[s];
-        direct[s] = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
-      }
-    });
-    rank_work().items += blocks[mine + 1] - blocks[mine];
-    rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::vector<size_t> blocks =
+        run_my_block(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; }, [&](size_t first, size_t last) {
+          tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t s = r.begin(); s != r.end(); ++s) {
+              if (!gathered[s]) continue;
+              const uint32_t* f = members.data() + begin[s];
+              direct[s] = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
+            }
+          });
+        });
     share_blocks(direct, blocks);
     for (size_t s = 0; s < slots; ++s)
       if (gathered[s]) sum[s] += mul(rho[s], direct[s]);  // ρ summed by area as sum is: both divided by weight below

@@ -9,6 +9,7 @@
 // refinement, the sweeps) is replicated; rank 0 alone writes the bake (docs/scaling.md).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <functional>
@@ -38,7 +39,7 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 // Bytes this process has sent and received through all_gather (report.json).
 uint64_t ranks_bytes_exchanged();
 
-// What one rank did of the divided work (report.json "ranks"): the items it evaluated (links, faces,
+// What one rank did of the divided work (report.json "ranks"): the items in its blocks (links, faces,
 // vertices), the seconds it spent on them and in the exchanges (waiting for the others included), and
 // the bytes it sent.
 struct RankWork {
@@ -52,6 +53,19 @@ std::vector<RankWork> all_rank_work();
 // [0, n) cut into one contiguous block per rank, in order, of about equal total cost (cost(k) > 0 for
 // item k): the block boundaries, ranks().size + 1 of them. Every rank computes the same ones.
 std::vector<size_t> rank_blocks(size_t n, const std::function<double(size_t)>& cost);
+
+// Runs body(begin, end) on this rank's block of [0, n) (rank_blocks by cost), adds its items and its
+// seconds to rank_work(), and returns the blocks, for share_blocks. With one rank: body(0, n).
+template <class Body>
+std::vector<size_t> run_my_block(size_t n, const std::function<double(size_t)>& cost, Body&& body) {
+  const std::vector<size_t> blocks = rank_blocks(n, cost);
+  const size_t begin = blocks[size_t(ranks().rank)], end = blocks[size_t(ranks().rank) + 1];
+  const auto start = std::chrono::steady_clock::now();
+  body(begin, end);
+  rank_work().items += end - begin;
+  rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return blocks;
+}
 
 // v[blocks[r], blocks[r + 1]) from rank r to every rank (this rank's block is already in v). T is
 // trivially copyable; with one rank nothing happens.

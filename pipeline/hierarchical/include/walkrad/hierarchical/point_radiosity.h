@@ -69,9 +69,6 @@ class LeafRadiosity {
   // point form factor to x and what it sends (ClusterGather::sent), added to H and f.
   void near_parts(uint32_t node, const Vec3& x, const Vec3& normal, bool gathered, Vec3& H, double& f) const;
 
- public:
-
- private:
   struct Near {
     uint32_t source;
     double visible;  // F / F_open of the link

@@ -19,6 +19,10 @@ namespace walkrad {
 // area mean if the twin is finer there. Twins of one polygon split into the same regions, so each side
 // passes on exactly what the other received (the energy audit closes).
 Vec3 twin_received(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon);
+// The twin's node at leaf's place and depth (its deepest above that place where the twin is coarser).
+uint32_t twin_node(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon);
+// τ of an element's material.
+Vec3 material_transmittance(const Hierarchy& h, const HNode& element);
 // Its punctual lights' part alone (D'), as twin_received() takes it.
 Vec3 twin_direct(const Hierarchy& h, const HNode& leaf, uint32_t twin_polygon);
 
