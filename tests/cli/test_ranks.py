@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """A bake over several ranks (issue 28, walkrad/core/ranks.h): the Cornell box (defaults) and a 2-room
 office-floor level (draft) baked with mpirun at 1, 2 and 3 ranks (one thread each) give chunks and a manifest byte-identical
-to the plain bake's, report the ranks and the bytes they exchanged, and leave no scratch folder; a scene
-no rank can read ends every rank with the reader's exit code and writes nothing.
+to the plain bake's, report the ranks and the bytes they exchanged, and leave no scratch folder; rank 1
+needs neither the scene nor the walkthrough (rank 0 sends what it read); a rank past --max-memory-mb
+ends the bake with exit code 6; a scene
+no rank can read ends every rank with the reader's exit code and writes nothing; ranks running different
+builds are refused.
 Usage: test_ranks.py WALKRAD SOURCE_DIR WORK_DIR"""
 import glob
 import json
@@ -12,7 +15,7 @@ import subprocess
 import sys
 import tempfile
 
-walkrad, source, work = sys.argv[1:4]
+walkrad, source, work = (os.path.abspath(a) for a in sys.argv[1:4])
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
@@ -53,11 +56,35 @@ for name, args in scenes.items():
         if shares["count"] != n or len(shares["per_rank"]) != n or not 1 <= shares["balance"] < 2 or \
                 sum(r["items"] for r in shares["per_rank"]) == 0:
             failures.append(f"{name}, {n} ranks: report's ranks {shares}")
+        # Each rank's links and rays add up to the bake's; each reports its own peak memory.
+        per = shares["per_rank"]
+        if sum(r["rays"] for r in per) != counts["visibility_rays"] or sum(r["links"] for r in per) < counts["links"] or \
+                (n > 1 and min(r["links"] for r in per) == 0) or min(r["peak_memory_mb"] for r in per) <= 0:
+            failures.append(f"{name}, {n} ranks: per-rank links, rays or memory do not add up: {per}, "
+                            f"{counts['links']} links, {counts['visibility_rays']} rays")
         print(f"{name}, {n} ranks: {counts['links']} links, {exchanged} bytes exchanged")
         if not same(plain, out):
             failures.append(f"{name}, {n} ranks: the bake differs from one process's")
         if (n > 1) != (exchanged > 0):
             failures.append(f"{name}, {n} ranks: report says {exchanged} bytes exchanged")
+
+# Rank 0 reads the files and sends what it read: rank 1 runs in an empty folder where the scene's and
+# the walkthrough's relative paths lead nowhere (another host). The IES room (profiles, a spot light)
+# and the office level (a walkthrough file).
+hosts = {"ies-room": (os.path.join(source, "examples/ies-room"), ["ies-room.gltf"]),
+         "office": (office, ["office-floor-2.glb", "--views", "office-floor-2-walkthrough.json", "--quality", "draft"])}
+empty = os.path.join(work, "empty-host")
+os.makedirs(empty)
+for name, (folder, args) in hosts.items():
+    plain, out = os.path.join(work, name + "-plain-here"), os.path.join(work, name + "-one-reader")
+    subprocess.run([walkrad, "bake", *args, "-o", plain, "-q", "--threads", "1"], check=True, stdout=subprocess.DEVNULL, cwd=folder)
+    bake_args = ["bake", *args, "-o", out, "-q", "--threads", "1"]
+    r = subprocess.run(mpirun + ["-np", "1", walkrad, *bake_args, ":", "-np", "1", "-wdir", empty, walkrad, *bake_args],
+                       capture_output=True, text=True, env=env, cwd=folder, timeout=600)
+    ok = r.returncode == 0 and same(plain, out)
+    print(f"{name}, rank 1 without the files: exit {r.returncode}, {'byte-identical' if ok else 'DIFFERS'}")
+    if not ok:
+        failures.append(f"{name}, rank 1 without the files: exit {r.returncode}: {r.stderr.strip()[-300:]}")
 left = set(glob.glob(os.path.join(tempfile.gettempdir(), "walkrad-rank-*"))) - scratch_before
 if left:
     failures.append("scratch folders left: " + ", ".join(sorted(left)))
@@ -71,6 +98,34 @@ if r.returncode == 0 or os.path.exists(missing):
     failures.append(f"an unreadable scene over 2 ranks: exit {r.returncode}, output {'written' if os.path.exists(missing) else 'absent'}")
 if "no-such-scene.gltf" not in r.stderr:
     failures.append("the error does not name the scene: " + r.stderr.strip()[-300:])
+
+# --max-memory-mb bounds each rank: over it, the bake ends with exit code 6 and a message, nothing written.
+capped = os.path.join(work, "capped")
+r = subprocess.run(mpirun + ["-np", "2", walkrad, "bake", *scenes["office"], "-o", capped, "-q", "--threads", "1",
+                             "--max-memory-mb", "60"], capture_output=True, text=True, env=env, timeout=600)
+print(f"memory cap, 2 ranks: exit {r.returncode}")
+if r.returncode != 6 or os.path.exists(capped) or "past --max-memory-mb 60" not in r.stderr:
+    failures.append(f"a memory cap over 2 ranks: exit {r.returncode}, output {os.path.exists(capped)}: {r.stderr.strip()[-300:]}")
+
+# Ranks running different builds (a copy of walkrad whose version string is changed, started beside
+# walkrad itself by mpirun's MPMD syntax): refused before any work, rank 0 naming both builds.
+other = os.path.join(work, "walkrad-other-build")
+binary = open(walkrad, "rb").read()
+version = json.load(open(os.path.join(work, "cornell-plain", "manifest.json")))["tool"].split()[-1].encode()
+changed = version[:-1] + (b"9" if version[-1:] != b"9" else b"8")
+if binary.count(version + b"\0") != 1:
+    failures.append(f"the version string {version} is not in {walkrad} once")
+else:
+    open(other, "wb").write(binary.replace(version + b"\0", changed + b"\0"))
+    os.chmod(other, 0o755)
+    mixed = os.path.join(work, "mixed")
+    args = ["bake", scenes["cornell"][0], "-o", mixed, "-q", "--threads", "1"]
+    r = subprocess.run(mpirun + ["-np", "1", walkrad, *args, ":", "-np", "1", other, *args], capture_output=True, text=True,
+                       env=env, timeout=120)
+    print(f"two builds, 2 ranks: exit {r.returncode}")
+    if r.returncode != 2 or os.path.exists(mixed) or "rank 1 runs another build" not in r.stderr or \
+            changed.decode() not in r.stderr:
+        failures.append(f"two builds over 2 ranks: exit {r.returncode}, output {os.path.exists(mixed)}: {r.stderr.strip()[-400:]}")
 for f in failures:
     print("FAIL:", f)
 sys.exit(1 if failures else 0)

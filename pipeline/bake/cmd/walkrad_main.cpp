@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include "walkrad/core/build_identity.h"
 #include "walkrad/core/ranks.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_reader.h"
@@ -88,6 +89,12 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("--max-memory-mb", bs.caps.max_memory_mb,
                        "stop with exit code 6, writing nothing, when memory passes this many MiB or the next solve round is "
                        "predicted to (default: 60% of the machine's memory; 0: no cap)");
+  auto* checkpoint_opt = bake_cmd->add_option(
+      "--checkpoint", bs.checkpoint,
+      "hierarchical: save the solve's state in this folder after each refinement round (removed when the bake is written)");
+  bake_cmd->add_flag("--resume", bs.resume,
+                     "hierarchical: start from the --checkpoint folder's last complete round (from the start when it has none)")
+      ->needs(checkpoint_opt);
   bool quiet = false;
   bake_cmd->add_flag("-q,--quiet", quiet, "no progress lines");
 
@@ -184,6 +191,15 @@ int main(int argc, char** argv) {
   };
   try {
     if (bake_cmd->parsed()) {
+      // Every rank knows of a mismatch: rank 0 says it, and they all end alike (no abort needed).
+      std::string other;
+      if (const int r = rk.size > 1 ? first_different_rank(build_identity(), &other) : -1; r > 0) {
+        if (rk.rank == 0)
+          std::fprintf(stderr, "walkrad: error: mpirun: rank %d runs another build (%s) than rank 0 (%s): every host needs the "
+                       "same walkrad executable\n", r, other.c_str(), build_identity().c_str());
+        stop_ranks();
+        return kExitBadArguments;
+      }
       bs.progress = !quiet && rk.rank == 0;
       bs.compress = !no_compression;
       if (!quality.empty()) bs.error = quality_error(quality);
@@ -254,13 +270,17 @@ int main(int argc, char** argv) {
     }
     return finish(kExitOk);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "walkrad: error: %s\n", e.what());
+    // Inputs are read by rank 0 (the others get what it read, and agree on what is wrong with it); a
+    // limit is each rank's own (--max-memory-mb bounds each).
+    if (rk.rank == 0) std::fprintf(stderr, "walkrad: error: %s\n", e.what());
+    else if (e.code() == kExitLimitReached) std::fprintf(stderr, "walkrad: error: rank %d: %s\n", rk.rank, e.what());
     return finish(e.code());
   } catch (const OutputError& e) {
-    std::fprintf(stderr, "walkrad: error: %s\n", e.what());
+    std::fprintf(stderr, "walkrad: error: %s%s\n", rk.rank ? ("rank " + std::to_string(rk.rank) + ": ").c_str() : "", e.what());
     return finish(kExitOutputFailure);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "walkrad: internal error: %s\n", e.what());
+    std::fprintf(stderr, "walkrad: internal error: %s%s\n", rk.rank ? ("rank " + std::to_string(rk.rank) + ": ").c_str() : "",
+                 e.what());
     return finish(kExitInternal);
   }
 }

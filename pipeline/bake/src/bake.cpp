@@ -12,6 +12,8 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "bake_inputs.h"
+#include "checkpoint_file.h"
 #include "method_run.h"
 #include "walkrad/formats/chunk_writer.h"
 #include "walkrad/formats/error.h"
@@ -46,10 +48,7 @@ namespace {
 // (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
 std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
   uint64_t h = 0xcbf29ce484222325ull;
-  auto add = [&](const void* data, size_t size) {
-    const auto* bytes = static_cast<const uint8_t*>(data);
-    for (size_t k = 0; k < size; ++k) h = (h ^ bytes[k]) * 0x100000001b3ull;
-  };
+  auto add = [&](const void* data, size_t size) { h = fnv1a(data, size, h); };
   for (const Polygon& p : scene.polygons) {
     add(&p.count, sizeof p.count);
     for (int k = 0; k < p.count; ++k) add(&p.v[size_t(k)], sizeof(Vec3));
@@ -95,6 +94,9 @@ BakeSummary bake(const BakeSettings& s) {
   const auto t_start = Clock::now();
   if (s.method != "classic" && s.method != "hierarchical")
     throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
+  if (!s.checkpoint.empty() && s.method != "hierarchical")
+    throw InputError("--checkpoint", s.checkpoint, "checkpoints save the hierarchical method's solve (the classic method has no rounds)",
+                     kExitBadArguments);
   if (s.solver == "southwell" && s.method != "classic")
     throw InputError("--solver", s.solver, "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
                      kExitBadArguments);
@@ -110,11 +112,12 @@ BakeSummary bake(const BakeSettings& s) {
   const CapWatch caps(s.caps, s.scene);
   Phases phases(s.progress, caps);
   phases.start("read");
-  Scene input = read_scene(s.scene);
-  if (const uint64_t copies = remove_duplicate_polygons(input))
-    input.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
-  std::vector<Viewpoint> views = s.views.empty() ? input.cameras : read_walkthrough(s.views);
-  for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
+  BakeInputs inputs = read_bake_inputs(s);  // under mpirun, read by rank 0 and sent to the others
+  const Scene& input = inputs.scene;
+  const std::vector<Viewpoint>& views = inputs.views;
+  if (ranks().rank == 0)
+    for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
+  const CheckpointFile checkpoint(s, inputs.scene_hash, inputs.views_hash);
   bool any_emitter = false;
   for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
   for (const PunctualLight& l : input.lights) any_emitter = any_emitter || max_component(l.intensity) > 0;
@@ -191,7 +194,7 @@ BakeSummary bake(const BakeSettings& s) {
   const MethodResult result = s.method == "classic"
                                   ? run_classic(s, scene, rays, tree, bounds, plan, phases)
                                   : run_hierarchical(s, scene, rays, tree, views, plan, twins,
-                                                       plan.volumes.on ? &volume_visibility : nullptr, phases);
+                                                       plan.volumes.on ? &volume_visibility : nullptr, checkpoint, phases);
 
   phases.start("exposure");
   uint64_t exposure_rays = 0;
@@ -228,7 +231,7 @@ BakeSummary bake(const BakeSettings& s) {
   Manifest manifest;
   manifest.tool = std::string("walkrad ") + WALKRAD_VERSION;
   manifest.scene_file = s.scene;
-  manifest.scene_hash = hash_file(s.scene);
+  manifest.scene_hash = inputs.scene_hash;
   manifest.bounds = surface.mesh.bounds();
   manifest.exposure = exposure;
   manifest.viewpoints = views;
@@ -267,8 +270,9 @@ BakeSummary bake(const BakeSettings& s) {
   double busiest = 0, mean = 0;
   const std::vector<RankWork> work = all_rank_work();
   for (size_t r = 0; r < work.size(); ++r) {
-    per_rank.push_back({{"rank", r}, {"items", work[r].items}, {"compute_seconds", work[r].compute_seconds},
-                        {"exchange_seconds", work[r].exchange_seconds}, {"bytes_sent", work[r].bytes_sent}});
+    per_rank.push_back({{"rank", r}, {"items", work[r].items}, {"links", work[r].links}, {"rays", work[r].rays},
+                        {"compute_seconds", work[r].compute_seconds}, {"exchange_seconds", work[r].exchange_seconds},
+                        {"bytes_sent", work[r].bytes_sent}, {"peak_memory_mb", work[r].peak_memory_mb}});
     busiest = std::max(busiest, work[r].compute_seconds);
     mean += work[r].compute_seconds / double(work.size());
   }
@@ -282,6 +286,7 @@ BakeSummary bake(const BakeSettings& s) {
   };
   write_json(out.path("report.json"), report);
   out.commit();
+  if (!s.checkpoint.empty()) checkpoint.remove();  // the bake is written: nothing left to resume
 
   BakeSummary summary;
   summary.output = s.output;

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "checkpoint_file.h"
 #include "walkrad/bake/bake.h"
 #include "walkrad/bake/bake_caps.h"
 #include "walkrad/output/surface_mesher.h"
@@ -76,6 +77,6 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
 // The hierarchical method: importance from the viewpoints, then the refine-solve rounds.
 MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
                               const std::vector<Viewpoint>& views, const EffectPlan& plan, const std::vector<uint32_t>& twins,
-                              const VolumeVisibility* volumes, Phases& phases);
+                              const VolumeVisibility* volumes, const CheckpointFile& checkpoint, Phases& phases);
 
 }  // namespace walkrad::bake_detail

@@ -71,7 +71,7 @@ json error_estimate(const Hierarchy& h, const std::vector<ViewHit>& hits, size_t
 
 MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const RayScene& rays, const ClusterTree& tree,
                                 const std::vector<Viewpoint>& views, const EffectPlan& plan, const std::vector<uint32_t>& twins,
-                                const VolumeVisibility* volumes, Phases& phases) {
+                                const VolumeVisibility* volumes, const CheckpointFile& checkpoint, Phases& phases) {
   auto h = std::make_shared<Hierarchy>(scene, tree, plan.textures.on);
   uint64_t view_rays = 0;
   std::vector<ViewHit> hits;
@@ -102,12 +102,25 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   }
   if (plan.transmission.on) hs.twins = &twins;
   hs.volumes = volumes;
-  hs.checkpoint = [&phases](const char* where, uint64_t more) {
+  hs.check_limits = [&phases](const char* where, uint64_t more) {
     phases.check(std::string("solve: ") + where);
     if (more > 0)
       phases.check_predicted(std::string("solve: ") + where, resident_memory_mb() + (more >> 20),
                              "the list of new links (" + std::to_string(more >> 20) + " MiB more)");
   };
+  // Checkpoints: the state after each round, and a bake resumed from the last one saved.
+  std::vector<uint8_t> resume_state;
+  int resumed_rounds = 0;
+  if (!s.checkpoint.empty()) {
+    if (s.resume && checkpoint.read(resumed_rounds, resume_state)) {
+      hs.resume = &resume_state;
+      if (s.progress)
+        std::fprintf(stderr, "walkrad: resuming the solve after round %d (%s)\n", resumed_rounds, checkpoint.path().c_str());
+    } else if (s.resume && s.progress) {
+      std::fprintf(stderr, "walkrad: no checkpoint in %s: solving from the start\n", s.checkpoint.c_str());
+    }
+    hs.save_round = [&checkpoint](int rounds, const std::vector<uint8_t>& state) { checkpoint.write(rounds, state); };
+  }
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -122,7 +135,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
       // At most as many as the last round: the first rounds multiply their links by 100 and more,
       // a rate no bake keeps, and the Cornell box's default bake, whose additions went ×2.3 from its
       // 4th to its 5th round, then added half as many (a ratio kept would have predicted 343 MiB
-      // for its 197). A faster growth is caught within the round (HierarchicalSettings::checkpoint).
+      // for its 197). A faster growth is caught within the round (HierarchicalSettings::check_limits).
       const double growth = std::min(1.0, double(it.new_links) / double(previous_new));
       const auto predicted = uint64_t(double(rss) + double(rss - previous_rss) * growth);
       phases.check_predicted("solve round " + round, predicted,
@@ -201,6 +214,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
               {"oracle", stats.oracle}, {"error", s.error}, {"white", stats.white}, {"min_area", stats.min_area},
               {"above_tolerance", stats.above_tolerance},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
+              {"resumed_after_round", resumed_rounds},
               {"corrections", stats.corrections},
               {"balance", {{"iterations", stats.balance_iterations}, {"row_error", stats.balance_row_error},
                            {"column_error", stats.balance_column_error}, {"unbalanced_leaves", stats.balance_unbalanced},

@@ -1,11 +1,13 @@
 #include "walkrad/core/ranks.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
 #include <mpi.h>
+#include <sys/resource.h>
 
 namespace walkrad {
 
@@ -64,11 +66,45 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
   return all;
 }
 
+void broadcast(std::vector<uint8_t>& bytes) {
+  if (!g_started || g_ranks.size == 1) return;
+  const auto start = std::chrono::steady_clock::now();
+  uint64_t size = bytes.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(size_t(size));
+  constexpr uint64_t kPiece = uint64_t(1) << 30;  // MPI counts are ints
+  for (uint64_t at = 0; at < size; at += kPiece)
+    MPI_Bcast(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+  g_work.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (g_ranks.rank == 0) g_work.bytes_sent += size * uint64_t(g_ranks.size - 1);
+  g_bytes += size * (g_ranks.rank == 0 ? uint64_t(g_ranks.size - 1) : 1);
+}
+
+int first_different_rank(const std::string& mine, std::string* theirs) {
+  std::vector<uint8_t> text(mine.begin(), mine.end());
+  text.push_back(0);  // each rank's text ends with a 0: the gathered texts split there
+  const std::vector<uint8_t> all = all_gather(text);
+  std::vector<std::string> texts(1);
+  for (uint8_t c : all) {
+    if (c) texts.back().push_back(char(c));
+    else texts.emplace_back();
+  }
+  texts.pop_back();
+  for (size_t r = 1; r < texts.size(); ++r)
+    if (texts[r] != texts[0]) {
+      if (theirs) *theirs = texts[r];
+      return int(r);
+    }
+  return -1;
+}
+
 uint64_t ranks_bytes_exchanged() { return g_bytes; }
 
 RankWork& rank_work() { return g_work; }
 
 std::vector<RankWork> all_rank_work() {
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) == 0) g_work.peak_memory_mb = uint64_t(usage.ru_maxrss) / 1024;  // KiB on Linux
   std::vector<uint8_t> mine(sizeof(RankWork));
   std::memcpy(mine.data(), &g_work, sizeof(RankWork));
   const std::vector<uint8_t> all = all_gather(mine);

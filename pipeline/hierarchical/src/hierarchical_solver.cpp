@@ -58,8 +58,13 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
 }
 
 void Solver::run(const std::function<void(const IterationStats&)>& progress) {
-  bool converged_before = false;
-  for (int it = 0; it < s_.max_iterations; ++it) {
+  RoundState state;
+  if (s_.resume) {
+    ByteReader in(*s_.resume);
+    state = load_state(in);
+  }
+  bool& converged_before = state.converged_before;
+  for (int it = state.next_round; !state.finished && it < s_.max_iterations; ++it) {
     IterationStats is;
     const size_t before = pending_.size();
     const size_t elements_before = h_.element_count();
@@ -73,11 +78,11 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       }
       refine_existing();
     }
-    if (s_.checkpoint) s_.checkpoint("refinement", 0);
+    if (s_.check_limits) s_.check_limits("refinement", 0);
     if (lights()) compute_missing_direct();  // elements the refinement created
     is.new_links = pending_.size() - before;
     evaluate_pending(is);
-    if (s_.checkpoint) s_.checkpoint("link evaluation", 0);
+    if (s_.check_limits) s_.check_limits("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
     if (s_.closed_rows && !s_.closed && is.new_links > 0) {
       stats_.balance_unbalanced = normalise_closed_rows(h_, &stats_.mean_row_sum);
@@ -87,6 +92,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       is.change = 0;
       record(is, progress);
       stats_.converged = true;
+      save_round(state, it, true);
       break;
     }
     // A round that added under 1% of the links is the last: each later round costs a pass over every
@@ -104,12 +110,21 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     }
     converged_before = is.change <= s_.tolerance;
     record(is, progress);
-    if (last && !settled && converged_before) {
-      stats_.converged = true;
-      break;
-    }
+    const bool done = last && !settled && converged_before;
+    if (done) stats_.converged = true;
+    save_round(state, it, done);
+    if (done) break;
   }
   measure_left_error();
+}
+
+void Solver::save_round(RoundState& state, int round, bool finished) {
+  state.next_round = round + 1;
+  state.finished = finished;
+  if (!s_.save_round) return;
+  ByteWriter out;
+  save_state(out, state);
+  s_.save_round(state.next_round, out.bytes());
 }
 
 void Solver::balance_closed() {

@@ -59,6 +59,8 @@ void Solver::evaluate_pending(IterationStats& is) {
           std::vector<double> weights;
           for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
         });
+        rank_work().links += end - begin;
+        for (size_t k = begin; k < end; ++k) rank_work().rays += pending_[k].rays;
       });
   share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
   for (const Pending& p : pending_) {

@@ -135,8 +135,8 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   if (blockers > kSomeBlockers) samples *= 2;
   if (blockers > kManyBlockers) samples *= 2;
   // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
-  if (s_.checkpoint && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
-    s_.checkpoint("refinement", 2 * pending_.capacity() * sizeof(Pending));
+  if (s_.check_limits && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
+    s_.check_limits("refinement", 2 * pending_.capacity() * sizeof(Pending));
   pending_.push_back({i, j, s_.visibility && blockers > size_t(volumes > 0), samples, s_.visibility && volumes > 0});
 }
 
@@ -201,7 +201,7 @@ void Solver::refine_existing() {
   const size_t n = h_.nodes().size();
   for (size_t at = 0; at < n; ++at) {
     const uint32_t i = uint32_t(at);
-    if (s_.checkpoint && i % 4096 == 4095) s_.checkpoint("refinement", 0);
+    if (s_.check_limits && i % 4096 == 4095) s_.check_limits("refinement", 0);
     if (h_[i].links.empty()) continue;
     std::vector<Link> links = std::move(h_[i].links);
     h_[i].links.clear();

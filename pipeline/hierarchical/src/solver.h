@@ -60,6 +60,16 @@ class Solver {
 
   void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress);
 
+  // Where run() stands between rounds, saved with the rest of the state (solve_checkpoint.cpp).
+  struct RoundState {
+    int next_round = 0;
+    bool converged_before = false;
+    bool finished = false;  // converged: what follows the rounds is all that is left
+  };
+  void save_round(RoundState& state, int round, bool finished);
+  void save_state(ByteWriter& out, const RoundState& round) const;
+  RoundState load_state(ByteReader& in);  // throws std::runtime_error for bytes that do not fit
+
  private:
   // --- error_estimate.cpp: what the refinement measures, and against what ---
 

@@ -47,6 +47,10 @@ struct BakeSettings {
   uint32_t volume_min_polygons = 64;
   double volume_penumbra_ratio = 1.0;
   BakeCaps caps;            // time and memory caps (not recorded: they do not change the result)
+  // hierarchical: a folder for the solve's state after each round (checkpoint_file.h), and whether
+  // to start from it. Not recorded: a resumed bake is byte-identical to one that ran through.
+  std::string checkpoint;
+  bool resume = false;
 
   nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
 };

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <functional>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -36,14 +37,24 @@ const Ranks& ranks();
 // Every rank's bytes, in rank order, to every rank (MPI_Allgatherv); with one rank, `mine` itself.
 std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 
-// Bytes this process has sent and received through all_gather (report.json).
+// Rank 0's bytes to every rank (MPI_Bcast): rank 0 reads a file that the other hosts need not have.
+// With one rank, nothing happens.
+void broadcast(std::vector<uint8_t>& bytes);
+
+// The first rank whose text differs from rank 0's (its text in *theirs), or -1 when every rank's is
+// the same, e.g. build_identity(): ranks built from different sources would not bake alike.
+int first_different_rank(const std::string& mine, std::string* theirs);
+
+// Bytes this process has sent and received through all_gather and broadcast (report.json).
 uint64_t ranks_bytes_exchanged();
 
 // What one rank did of the divided work (report.json "ranks"): the items in its blocks (links, faces,
-// vertices), the seconds it spent on them and in the exchanges (waiting for the others included), and
-// the bytes it sent.
+// vertices), the seconds it spent on them and in the exchanges (waiting for the others included), the
+// bytes it sent, and its peak memory.
 struct RankWork {
   uint64_t items = 0, bytes_sent = 0;
+  uint64_t links = 0, rays = 0;  // of the items, the links it evaluated and their visibility rays
+  uint64_t peak_memory_mb = 0;   // its peak resident memory (set by all_rank_work)
   double compute_seconds = 0, exchange_seconds = 0;
 };
 RankWork& rank_work();  // this rank's, added to by the divided stages

@@ -71,7 +71,11 @@ struct HierarchicalSettings {
   // the new links are evaluated, and before the list of new links grows: `more` bytes about to be
   // allocated, else 0), never from worker threads: the bake's memory cap (bake_caps.h) throws from
   // here, so that a round cannot run past it. Empty: nothing.
-  std::function<void(const char* where, uint64_t more)> checkpoint;
+  std::function<void(const char* where, uint64_t more)> check_limits;
+  // Checkpoints (solve_checkpoint.cpp): save_round gets the solve's state after each round (rounds
+  // done so far, the bytes); resume, a state so saved, is started from instead of the first round.
+  std::function<void(int rounds, const std::vector<uint8_t>& state)> save_round;
+  const std::vector<uint8_t>* resume = nullptr;
 };
 
 struct IterationStats {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "walkrad/core/byte_buffer.h"
 #include "walkrad/formats/scene.h"
 #include "walkrad/scene/cluster_tree.h"
 
@@ -43,7 +44,8 @@ struct Link {
 
 inline bool has_seen(const Link& l) { return (l.seen[0] | l.seen[1] | l.seen[2] | l.seen[3]) != 0; }
 
-struct HNode {
+// A node's values: everything but its links, plain data (a checkpoint copies it whole).
+struct HNodeValues {
   Bounds bounds;
   Vec3 center;            // of the bounds
   double radius = 0;      // half the bounds' diagonal
@@ -76,6 +78,9 @@ struct HNode {
   double R = 0;           // direct importance (leaf elements; summed up in clusters)
   double I = 0, Ig = 0;   // importance, importance gathered this iteration
   uint32_t hit_begin = 0, hit_end = 0;  // element: its view hits, Hierarchy::hits()[begin, end)
+};
+
+struct HNode : HNodeValues {
   std::vector<Link> links;  // links where this node receives
 };
 
@@ -123,6 +128,11 @@ class Hierarchy {
   // below. Hits follow elements as they split.
   void set_view_hits(std::vector<ViewHit> hits);
   const std::vector<ViewHit>& hits() const { return hits_; }
+
+  // What refinement and the solve change (every node, its links, the children, the view hits), for
+  // a checkpoint; load_state restores it into a hierarchy built from the same scene and tree.
+  void save_state(ByteWriter& out) const;
+  void load_state(ByteReader& in);
 
  private:
   uint32_t add_element(const Polygon& shape, uint32_t polygon, int32_t parent, uint8_t depth);

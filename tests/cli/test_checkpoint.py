@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Checkpoints of the solve (issue 28, --checkpoint DIR and --resume; pipeline/bake/src/checkpoint_file.h):
+the Cornell box's default bake, killed (SIGKILL) right after its 3rd or 5th refinement round, resumed in one
+process or over 2 ranks, gives chunks and a manifest byte-identical to a bake that ran through; a bake
+with --checkpoint is itself unchanged and removes its checkpoint once written; a checkpoint from another
+build, scene or setting, or a damaged one, is refused with exit code 3, naming the file and the
+difference, and nothing is written.
+Usage: test_checkpoint.py WALKRAD SOURCE_DIR WORK_DIR"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+walkrad, source, work = (os.path.abspath(a) for a in sys.argv[1:4])
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+mpirun = ["mpirun", "--oversubscribe", "--bind-to", "none", "-np", "2"]
+scene = os.path.join(source, "examples/cornell-box/cornell-box.gltf")
+failures = []
+
+
+def bake(out, *extra, ranks=1, kill_after=None, scene_file=scene):
+    cmd = [walkrad, "bake", scene_file, "-o", out, "-q", "--threads", "2" if ranks == 1 else "1", *extra]
+    run_env = dict(env, WALKRAD_TEST_KILL_AFTER_ROUND=str(kill_after)) if kill_after else env
+    return subprocess.run((mpirun if ranks > 1 else []) + cmd, capture_output=True, text=True, env=run_env, timeout=600)
+
+
+def files(folder):
+    return sorted(f for f in os.listdir(folder) if f.endswith(".glb")) + ["manifest.json"]
+
+
+def same(a, b):
+    return files(a) == files(b) and all(open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read()
+                                        for f in files(a))
+
+
+plain = os.path.join(work, "plain")
+if bake(plain).returncode != 0:
+    sys.exit("FAIL: the plain bake failed")
+
+# Checkpointing alone changes nothing, and the checkpoint goes once the bake is written.
+through, cp = os.path.join(work, "through"), os.path.join(work, "cp-through")
+r = bake(through, "--checkpoint", cp)
+if r.returncode != 0 or not same(plain, through) or os.path.exists(os.path.join(cp, "solve.checkpoint")):
+    failures.append(f"a bake with --checkpoint: exit {r.returncode}, same {r.returncode == 0 and same(plain, through)}, "
+                    f"checkpoint left {os.path.exists(os.path.join(cp, 'solve.checkpoint'))}")
+
+# Killed, then resumed: (kill in, after round, resume in).
+for kill_ranks, round_, resume_ranks in ((1, 3, 1), (2, 3, 1), (1, 5, 2)):
+    name = f"killed-{kill_ranks}-{round_}-{resume_ranks}"
+    out, cp = os.path.join(work, name), os.path.join(work, "cp-" + name)
+    r = bake(out, "--checkpoint", cp, ranks=kill_ranks, kill_after=round_)
+    if r.returncode == 0 or os.path.exists(out) or not os.path.exists(os.path.join(cp, "solve.checkpoint")):
+        failures.append(f"{name}: the killed bake: exit {r.returncode}, output {os.path.exists(out)}")
+        continue
+    if round_ == 3:
+        shutil.copy(os.path.join(cp, "solve.checkpoint"), os.path.join(work, "round-3.checkpoint"))
+    r = bake(out, "--checkpoint", cp, "--resume", ranks=resume_ranks)
+    ok = r.returncode == 0 and same(plain, out)
+    resumed = json.load(open(os.path.join(out, "report.json")))["solver"]["resumed_after_round"] if r.returncode == 0 else None
+    print(f"{name}: killed after round {round_} ({kill_ranks} rank(s)), resumed ({resume_ranks}) after round {resumed}: "
+          f"{'byte-identical' if ok else 'DIFFERS'}")
+    if not ok or resumed != round_ or os.path.exists(os.path.join(cp, "solve.checkpoint")):
+        failures.append(f"{name}: resumed: exit {r.returncode}, same {ok}, resumed after {resumed}: {r.stderr.strip()[-300:]}")
+
+# --resume with an empty folder starts from the beginning.
+out = os.path.join(work, "fresh")
+r = bake(out, "--checkpoint", os.path.join(work, "cp-empty"), "--resume")
+if r.returncode != 0 or not same(plain, out):
+    failures.append(f"--resume without a checkpoint: exit {r.returncode}")
+
+
+def refused(name, expect, *extra, checkpoint_bytes=None, scene_file=scene):
+    cp, out = os.path.join(work, "cp-" + name), os.path.join(work, name)
+    os.makedirs(cp, exist_ok=True)
+    path = os.path.join(cp, "solve.checkpoint")
+    open(path, "wb").write(checkpoint_bytes)
+    r = bake(out, "--checkpoint", cp, "--resume", *extra, scene_file=scene_file)
+    print(f"{name}: exit {r.returncode}: {r.stderr.strip()}")
+    if r.returncode != 3 or path not in r.stderr or expect not in r.stderr or os.path.exists(out) or not os.path.exists(path):
+        failures.append(f"{name}: exit {r.returncode}, output {os.path.exists(out)}: {r.stderr.strip()[-300:]}")
+
+
+saved = open(os.path.join(work, "round-3.checkpoint"), "rb").read()
+refused("other-setting", "other settings: error", "--error", "0.05", checkpoint_bytes=saved)
+other_scene = os.path.join(work, "cornell-copy.gltf")
+open(other_scene, "w").write(open(scene).read() + "\n")  # the same scene, other bytes: its hash differs
+refused("other-scene", "another scene", checkpoint_bytes=saved, scene_file=other_scene)
+at = saved.index(b"executable ") + len(b"executable ")
+refused("other-build", "resumes only in the build that wrote it", checkpoint_bytes=saved[:at] + b"0" * 16 + saved[at + 16:])
+refused("truncated", "damaged checkpoint", checkpoint_bytes=saved[:len(saved) // 2])
+flipped = bytearray(saved)
+flipped[-1000] ^= 1
+refused("flipped-bit", "checksum", checkpoint_bytes=bytes(flipped))
+
+# Wrong use: --resume needs --checkpoint; the classic method has no rounds to save.
+for args in (["--resume"], ["--checkpoint", os.path.join(work, "cp-classic"), "--method", "classic"]):
+    r = bake(os.path.join(work, "misuse"), *args)
+    if r.returncode != 2:
+        failures.append(f"{' '.join(args)}: exit {r.returncode} (expected 2)")
+for f in failures:
+    print("FAIL:", f)
+sys.exit(1 if failures else 0)
