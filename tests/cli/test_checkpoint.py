@@ -93,7 +93,7 @@ refused("other-build", "resumes only in the build that wrote it", checkpoint_byt
 refused("truncated", "damaged checkpoint", checkpoint_bytes=saved[:len(saved) // 2])
 flipped = bytearray(saved)
 flipped[-1000] ^= 1
-refused("flipped-bit", "checksum", checkpoint_bytes=bytes(flipped))
+refused("flipped-bit", "damaged checkpoint", checkpoint_bytes=bytes(flipped))
 
 # Wrong use: --resume needs --checkpoint; the classic method has no rounds to save.
 for args in (["--resume"], ["--checkpoint", os.path.join(work, "cp-classic"), "--method", "classic"]):

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -10,7 +11,6 @@
 
 #include "walkrad/core/build_identity.h"
 #include "walkrad/core/byte_buffer.h"
-#include "walkrad/core/file_hash.h"
 #include "walkrad/core/ranks.h"
 #include "walkrad/formats/error.h"
 
@@ -18,7 +18,7 @@ namespace walkrad {
 
 namespace {
 
-constexpr char kMagic[] = "walkrad-solve-checkpoint 1\n";
+constexpr char kMagic[] = "walkrad-solve-checkpoint 2\n";
 
 // What a resumed bake must share with the one that saved: the inputs and every recorded setting.
 nlohmann::json key_of(const BakeSettings& s, const std::string& scene_hash, const std::string& views_hash) {
@@ -47,23 +47,32 @@ CheckpointFile::CheckpointFile(const BakeSettings& s, const std::string& scene_h
 
 std::string CheckpointFile::path() const { return (std::filesystem::path(dir_) / "solve.checkpoint").string(); }
 
-void CheckpointFile::write(int rounds, const std::vector<uint8_t>& state) const {
+void CheckpointFile::write(int rounds, const std::function<void(ByteWriter&)>& write_state) const {
   if (ranks().rank != 0) return;
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
-  ByteWriter head;
-  head.put_string(key_);
-  head.put(int32_t(rounds));
-  head.put(uint64_t(state.size()));
-  head.put(fnv1a(state.data(), state.size()));
   const std::string tmp = path() + ".part";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(kMagic, sizeof kMagic - 1);
+    ByteWriter head;
+    head.write(kMagic, sizeof kMagic - 1);
+    head.put_string(key_);
+    head.put(int32_t(rounds));
     out.write(reinterpret_cast<const char*>(head.bytes().data()), std::streamsize(head.bytes().size()));
-    out.write(reinterpret_cast<const char*>(state.data()), std::streamsize(state.size()));
+    Checksum sum;
+    uint64_t size = 0;
+    ByteWriter state([&](const uint8_t* p, size_t n) {
+      out.write(reinterpret_cast<const char*>(p), std::streamsize(n));
+      sum.add(p, n);
+      size += n;
+    });
+    write_state(state);
+    state.flush();
+    const uint64_t trailer[2] = {size, sum.value()};
+    out.write(reinterpret_cast<const char*>(trailer), sizeof trailer);
     out.flush();
     if (!out) {
+      out.close();
       std::filesystem::remove(tmp, ec);
       throw OutputError(tmp + ": cannot write the checkpoint (--checkpoint " + dir_ + ")");
     }
@@ -75,36 +84,89 @@ void CheckpointFile::write(int rounds, const std::vector<uint8_t>& state) const 
   if (const char* kill = std::getenv("WALKRAD_TEST_KILL_AFTER_ROUND"); kill && std::atoi(kill) == rounds) std::raise(SIGKILL);
 }
 
-bool CheckpointFile::read(int& rounds, std::vector<uint8_t>& state) const {
-  std::vector<uint8_t> bytes;
-  if (ranks().rank == 0 && std::filesystem::exists(path())) {
-    std::ifstream in(path(), std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-    if (bytes.empty()) bytes.push_back(0);  // present but empty: damaged, not absent
-  }
-  broadcast(bytes);
-  if (bytes.empty()) return false;
+namespace {
+
+// Rank 0's reading of the header and trailer: the verdict every rank gets (ranks.h: broadcast).
+struct Opened {
+  uint8_t status = 0;  // 0: none, 1: resumable, 2: refused (why)
+  std::string why;
+  int32_t rounds = 0;
+  uint64_t size = 0, sum = 0;
+};
+
+Opened open_on_rank0(const std::string& path, const std::string& key, std::ifstream& in) {
+  Opened o;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return o;
+  o.status = 2;
+  const uint64_t file_size = std::filesystem::file_size(path, ec);
+  in.open(path, std::ios::binary);
   const size_t magic = sizeof kMagic - 1;
-  if (bytes.size() < magic || !std::equal(kMagic, kMagic + magic, bytes.begin()))
-    throw InputError(path(), "", "not a walkrad solve checkpoint");
-  try {
-    ByteReader in(bytes.data() + magic, bytes.size() - magic);
-    const nlohmann::json saved = nlohmann::json::parse(in.get_string());
-    if (const std::string why = difference(saved, nlohmann::json::parse(key_)); !why.empty())
-      throw InputError(path(), "", "cannot resume: " + why + " (remove it, or bake without --resume)");
-    rounds = in.get<int32_t>();
-    const auto size = in.get<uint64_t>();
-    const auto sum = in.get<uint64_t>();
-    if (size != in.remaining()) throw std::runtime_error(size > in.remaining() ? "truncated" : "bytes past its end");
-    bytes.erase(bytes.begin(), bytes.end() - std::ptrdiff_t(size));
-    if (fnv1a(bytes.data(), bytes.size()) != sum) throw std::runtime_error("its checksum does not match");
-    state = std::move(bytes);
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(path(), "", "damaged checkpoint (its header does not parse)");
-  } catch (const std::runtime_error& e) {
-    if (dynamic_cast<const InputError*>(&e)) throw;
-    throw InputError(path(), "", std::string("damaged checkpoint (") + e.what() + ")");
+  std::string head(magic, '\0');
+  if (ec || !in.read(head.data(), std::streamsize(magic)) || head != kMagic) {
+    o.why = "not a walkrad solve checkpoint";
+    return o;
   }
+  uint64_t length = 0;
+  std::string saved;
+  if (in.read(reinterpret_cast<char*>(&length), 8) && length < (uint64_t(1) << 24)) {
+    saved.resize(size_t(length));
+    in.read(saved.data(), std::streamsize(length));
+  }
+  in.read(reinterpret_cast<char*>(&o.rounds), sizeof o.rounds);
+  const uint64_t header = magic + 8 + length + sizeof o.rounds;
+  uint64_t trailer[2] = {};
+  if (in && file_size >= header + sizeof trailer) {
+    in.seekg(std::streamoff(file_size - sizeof trailer));
+    in.read(reinterpret_cast<char*>(trailer), sizeof trailer);
+    in.seekg(std::streamoff(header));
+  }
+  if (!in || trailer[0] != file_size - header - sizeof trailer) {
+    o.why = "damaged checkpoint (truncated)";
+    return o;
+  }
+  try {
+    o.why = difference(nlohmann::json::parse(saved), nlohmann::json::parse(key));
+    if (!o.why.empty()) o.why = "cannot resume: " + o.why + " (remove it, or bake without --resume)";
+  } catch (const nlohmann::json::exception&) {
+    o.why = "damaged checkpoint (its header does not parse)";
+  }
+  if (!o.why.empty()) return o;
+  o.status = 1, o.size = trailer[0], o.sum = trailer[1];
+  return o;
+}
+
+}  // namespace
+
+bool CheckpointFile::open(int& rounds, std::unique_ptr<ByteReader>& state) const {
+  auto in = std::make_shared<std::ifstream>();
+  Opened o;
+  ByteWriter verdict;
+  if (ranks().rank == 0) {
+    o = open_on_rank0(path(), key_, *in);
+    verdict.put(o.status), verdict.put(o.rounds), verdict.put(o.size), verdict.put(o.sum);
+    verdict.put_string(o.why);
+  }
+  broadcast(verdict.bytes());
+  ByteReader v(verdict.bytes());
+  o.status = v.get<uint8_t>(), o.rounds = v.get<int32_t>(), o.size = v.get<uint64_t>(), o.sum = v.get<uint64_t>();
+  o.why = v.get_string();
+  if (o.status == 0) return false;
+  if (o.status == 2) throw InputError(path(), "", o.why);
+  rounds = o.rounds;
+  // Each piece: read by rank 0, sent to the others, summed by all; the sum checked at the last byte.
+  auto sum = std::make_shared<Checksum>();
+  auto left = std::make_shared<uint64_t>(o.size);
+  state = std::make_unique<ByteReader>(
+      [in, sum, left, expected = o.sum, file = path()](uint8_t* dst, size_t n) {
+        if (ranks().rank == 0 && !in->read(reinterpret_cast<char*>(dst), std::streamsize(n)))
+          throw InputError(file, "", "cannot read the checkpoint");
+        broadcast(dst, n);
+        sum->add(dst, n);
+        *left -= n;
+        if (*left == 0 && sum->value() != expected) throw ByteFormatError("its checksum does not match");
+      },
+      o.size);
   return true;
 }
 

@@ -7,6 +7,7 @@
 
 #include "method_run.h"
 #include "walkrad/core/progress.h"
+#include "walkrad/formats/error.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy_audit.h"
@@ -109,23 +110,25 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
                              "the list of new links (" + std::to_string(more >> 20) + " MiB more)");
   };
   // Checkpoints: the state after each round, and a bake resumed from the last one saved.
-  std::vector<uint8_t> resume_state;
+  std::unique_ptr<ByteReader> resume_state;
   int resumed_rounds = 0;
   if (!s.checkpoint.empty()) {
-    if (s.resume && checkpoint.read(resumed_rounds, resume_state)) {
-      hs.resume = &resume_state;
+    if (s.resume && checkpoint.open(resumed_rounds, resume_state)) {
+      hs.resume = resume_state.get();
       if (s.progress)
         std::fprintf(stderr, "walkrad: resuming the solve after round %d (%s)\n", resumed_rounds, checkpoint.path().c_str());
     } else if (s.resume && s.progress) {
       std::fprintf(stderr, "walkrad: no checkpoint in %s: solving from the start\n", s.checkpoint.c_str());
     }
-    hs.save_round = [&checkpoint](int rounds, const std::vector<uint8_t>& state) { checkpoint.write(rounds, state); };
+    hs.save_round = [&checkpoint](int rounds, const std::function<void(ByteWriter&)>& write_state) {
+      checkpoint.write(rounds, write_state);
+    };
   }
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
   uint64_t previous_new = 0, previous_rss = resident_memory_mb();
-  solve_hierarchical(*h, rays, hs, stats, [&](const IterationStats& it) {
+  auto on_round = [&](const IterationStats& it) {
     const std::string round = std::to_string(stats.iterations.size());
     phases.check("solve round " + round);
     // Memory, predicted: the next round adds links at the rate the last two rounds' additions
@@ -154,7 +157,12 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
                  stats.iterations.size(), static_cast<unsigned long long>(it.links),
                  static_cast<unsigned long long>(it.new_links), static_cast<unsigned long long>(it.elements), it.change,
                  std::chrono::duration<double>(now - t0).count(), eta);
-  });
+  };
+  try {
+    solve_hierarchical(*h, rays, hs, stats, on_round);
+  } catch (const ByteFormatError& e) {  // only a resumed state is read as bytes
+    throw InputError(checkpoint.path(), "", std::string("damaged checkpoint (") + e.what() + ")");
+  }
   for (const HNode& n : h->nodes())
     if (!is_finite(n.B)) throw std::runtime_error("the solution is not finite (please report this scene)");
 

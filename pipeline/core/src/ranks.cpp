@@ -68,16 +68,21 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
 
 void broadcast(std::vector<uint8_t>& bytes) {
   if (!g_started || g_ranks.size == 1) return;
-  const auto start = std::chrono::steady_clock::now();
   uint64_t size = bytes.size();
   MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
   bytes.resize(size_t(size));
-  constexpr uint64_t kPiece = uint64_t(1) << 30;  // MPI counts are ints
-  for (uint64_t at = 0; at < size; at += kPiece)
-    MPI_Bcast(bytes.data() + at, int(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+  broadcast(bytes.data(), bytes.size());
+}
+
+void broadcast(uint8_t* data, size_t size) {
+  if (!g_started || g_ranks.size == 1) return;
+  const auto start = std::chrono::steady_clock::now();
+  constexpr size_t kPiece = size_t(1) << 30;  // MPI counts are ints
+  for (size_t at = 0; at < size; at += kPiece)
+    MPI_Bcast(data + at, int(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
   g_work.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (g_ranks.rank == 0) g_work.bytes_sent += size * uint64_t(g_ranks.size - 1);
-  g_bytes += size * (g_ranks.rank == 0 ? uint64_t(g_ranks.size - 1) : 1);
+  if (g_ranks.rank == 0) g_work.bytes_sent += uint64_t(size) * uint64_t(g_ranks.size - 1);
+  g_bytes += uint64_t(size) * (g_ranks.rank == 0 ? uint64_t(g_ranks.size - 1) : 1);
 }
 
 int first_different_rank(const std::string& mine, std::string* theirs) {

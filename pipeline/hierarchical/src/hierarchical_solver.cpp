@@ -59,10 +59,7 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
 
 void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   RoundState state;
-  if (s_.resume) {
-    ByteReader in(*s_.resume);
-    state = load_state(in);
-  }
+  if (s_.resume) state = load_state(*s_.resume);
   bool& converged_before = state.converged_before;
   for (int it = state.next_round; !state.finished && it < s_.max_iterations; ++it) {
     IterationStats is;
@@ -121,10 +118,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
 void Solver::save_round(RoundState& state, int round, bool finished) {
   state.next_round = round + 1;
   state.finished = finished;
-  if (!s_.save_round) return;
-  ByteWriter out;
-  save_state(out, state);
-  s_.save_round(state.next_round, out.bytes());
+  if (s_.save_round) s_.save_round(state.next_round, [&](ByteWriter& out) { save_state(out, state); });
 }
 
 void Solver::balance_closed() {

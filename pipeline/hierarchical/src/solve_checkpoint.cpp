@@ -27,13 +27,14 @@ void Hierarchy::load_state(ByteReader& in) {
   const auto count = in.get<uint64_t>();
   // The clusters and the input polygons' roots come first and never move: a state from another
   // scene or tree shows itself here.
-  if (count < nodes_.size()) throw std::runtime_error("the saved hierarchy is smaller than the scene's");
+  if (count < nodes_.size()) throw ByteFormatError("the saved hierarchy is smaller than the scene's");
+  if (count > in.remaining() / sizeof(HNodeValues)) throw ByteFormatError("truncated (the nodes run past the end)");
   std::vector<HNode> nodes(count);
   for (size_t i = 0; i < count; ++i) {
     static_cast<HNodeValues&>(nodes[i]) = in.get<HNodeValues>();
     in.get_vector(nodes[i].links);
     if (i < nodes_.size() && (nodes[i].cluster != nodes_[i].cluster || nodes[i].polygon != nodes_[i].polygon))
-      throw std::runtime_error("the saved hierarchy does not match the scene's");
+      throw ByteFormatError("the saved hierarchy does not match the scene's");
   }
   nodes_ = std::move(nodes);
   in.get_vector(children_);
@@ -80,7 +81,7 @@ Solver::RoundState Solver::load_state(ByteReader& in) {
   in.get_vector(stats_.iterations);
   stats_.oracle = in.get_string();
   each_stat([&](auto& v) { v = in.get<std::remove_reference_t<decltype(v)>>(); }, stats_);
-  if (!in.done()) throw std::runtime_error("the saved solve state has bytes past its end");
+  if (!in.done()) throw ByteFormatError("bytes past the end of the saved state");
   // Consumed by the first rounds (refine_for_lights): a state saved after them no longer needs it.
   if (round.next_round > 1) light_frontier_.clear(), light_spread_.clear();
   return round;

@@ -68,7 +68,7 @@ class Solver {
   };
   void save_round(RoundState& state, int round, bool finished);
   void save_state(ByteWriter& out, const RoundState& round) const;
-  RoundState load_state(ByteReader& in);  // throws std::runtime_error for bytes that do not fit
+  RoundState load_state(ByteReader& in);  // throws ByteFormatError for bytes that do not fit
 
  private:
   // --- error_estimate.cpp: what the refinement measures, and against what ---

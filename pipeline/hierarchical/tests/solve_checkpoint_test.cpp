@@ -2,6 +2,7 @@
 // state ends exactly where one that ran through ends, and damaged bytes are refused. The bake-level
 // checkpoint file, kills and ranks: tests/cli/test_checkpoint.py.
 #include <cstring>
+#include <functional>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -22,7 +23,13 @@ TEST(SolveCheckpoint, ResumedFromAnyRoundEndsWhereTheSolveThatRanThroughEnds) {
   HierarchicalSettings s;
   s.error = 0.4;  // a round trip of the state, not accuracy: the draft preset's rounds suffice
   std::map<int, std::vector<uint8_t>> saved;
-  s.save_round = [&](int rounds, const std::vector<uint8_t>& state) { saved[rounds] = state; };
+  s.save_round = [&](int rounds, const std::function<void(ByteWriter&)>& write_state) {
+    // Through the streaming writer, as checkpoint files are written, in pieces.
+    std::vector<uint8_t>& bytes = saved[rounds];
+    ByteWriter out([&](const uint8_t* p, size_t n) { bytes.insert(bytes.end(), p, p + n); });
+    write_state(out);
+    out.flush();
+  };
   Hierarchy through(scene, tree);
   HierarchicalStats stats;
   solve_hierarchical(through, rays, s, stats);
@@ -35,7 +42,10 @@ TEST(SolveCheckpoint, ResumedFromAnyRoundEndsWhereTheSolveThatRanThroughEnds) {
   for (const auto& [round, state] : saved) {
     Hierarchy h(scene, tree);
     HierarchicalStats resumed;
-    r.resume = &state;
+    // Read back through the streaming reader, in pieces, as checkpoint files are.
+    size_t at = 0;
+    ByteReader in([&](uint8_t* dst, size_t n) { std::memcpy(dst, state.data() + at, n), at += n; }, state.size());
+    r.resume = &in;
     solve_hierarchical(h, rays, r, resumed);
     ASSERT_EQ(h.nodes().size(), through.nodes().size()) << "after round " << round;
     size_t differ = 0;
@@ -56,8 +66,9 @@ TEST(SolveCheckpoint, ResumedFromAnyRoundEndsWhereTheSolveThatRanThroughEnds) {
                                           [&] { auto v = some; v.push_back(0); return v; }()}) {
     Hierarchy h(scene, tree);
     HierarchicalStats st;
-    r.resume = &bad;
-    EXPECT_THROW(solve_hierarchical(h, rays, r, st), std::runtime_error);
+    ByteReader in(bad);
+    r.resume = &in;
+    EXPECT_THROW(solve_hierarchical(h, rays, r, st), ByteFormatError);
   }
 }
 

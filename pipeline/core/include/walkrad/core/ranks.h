@@ -40,6 +40,8 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 // Rank 0's bytes to every rank (MPI_Bcast): rank 0 reads a file that the other hosts need not have.
 // With one rank, nothing happens.
 void broadcast(std::vector<uint8_t>& bytes);
+// The same for bytes whose count every rank knows.
+void broadcast(uint8_t* data, size_t size);
 
 // The first rank whose text differs from rank 0's (its text in *theirs), or -1 when every rank's is
 // the same, e.g. build_identity(): ranks built from different sources would not bake alike.

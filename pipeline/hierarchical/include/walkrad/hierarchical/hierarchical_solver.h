@@ -72,10 +72,12 @@ struct HierarchicalSettings {
   // allocated, else 0), never from worker threads: the bake's memory cap (bake_caps.h) throws from
   // here, so that a round cannot run past it. Empty: nothing.
   std::function<void(const char* where, uint64_t more)> check_limits;
-  // Checkpoints (solve_checkpoint.cpp): save_round gets the solve's state after each round (rounds
-  // done so far, the bytes); resume, a state so saved, is started from instead of the first round.
-  std::function<void(int rounds, const std::vector<uint8_t>& state)> save_round;
-  const std::vector<uint8_t>* resume = nullptr;
+  // Checkpoints (solve_checkpoint.cpp): after each round, save_round gets the rounds done so far and
+  // a function that writes the solve's state to a ByteWriter (called or not, as it likes); resume, a
+  // state so written, is read (ByteFormatError where it does not fit) and started from instead of
+  // the first round.
+  std::function<void(int rounds, const std::function<void(ByteWriter&)>& write_state)> save_round;
+  ByteReader* resume = nullptr;
 };
 
 struct IterationStats {
