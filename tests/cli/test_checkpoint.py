@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Checkpoints of the solve (issue 28, --checkpoint DIR and --resume; pipeline/bake/src/checkpoint_file.h):
-the Cornell box's default bake, killed (SIGKILL) right after its 3rd or 5th refinement round, resumed in one
-process or over 2 ranks, gives chunks and a manifest byte-identical to a bake that ran through; a bake
-with --checkpoint is itself unchanged and removes its checkpoint once written; a checkpoint from another
-build, scene or setting, or a damaged one, is refused with exit code 3, naming the file and the
-difference, and nothing is written.
+the Cornell box's default bake, killed (SIGKILL) right after its 3rd or 5th refinement round, resumed in
+one process or over 2 ranks, or stopped by --max-seconds and resumed, gives chunks and a manifest
+byte-identical to a bake that ran through; a bake with --checkpoint is itself unchanged and removes its
+checkpoint once written; a checkpoint from another build, scene or setting, or a damaged one, is refused
+with exit code 3, naming the file and the difference, and nothing is written.
 Usage: test_checkpoint.py WALKRAD SOURCE_DIR WORK_DIR"""
 import json
 import os
@@ -64,6 +64,17 @@ for kill_ranks, round_, resume_ranks in ((1, 3, 1), (2, 3, 1), (1, 5, 2)):
           f"{'byte-identical' if ok else 'DIFFERS'}")
     if not ok or resumed != round_ or os.path.exists(os.path.join(cp, "solve.checkpoint")):
         failures.append(f"{name}: resumed: exit {r.returncode}, same {ok}, resumed after {resumed}: {r.stderr.strip()[-300:]}")
+
+# A bake stopped by its own time cap (exit 6, between rounds) goes on with --resume from the last round
+# it saved (none if it stopped before one: the same bake either way).
+out, cp = os.path.join(work, "capped"), os.path.join(work, "cp-capped")
+r = bake(out, "--checkpoint", cp, "--max-seconds", "0.5")
+saved_round = os.path.exists(os.path.join(cp, "solve.checkpoint"))
+r2 = bake(out, "--checkpoint", cp, "--resume")
+print(f"stopped by --max-seconds 0.5: exit {r.returncode}, a checkpoint {'left' if saved_round else 'not yet written'}; "
+      f"resumed: exit {r2.returncode}, {'byte-identical' if r2.returncode == 0 and same(plain, out) else 'DIFFERS'}")
+if r.returncode != 6 or r2.returncode != 0 or not same(plain, out):
+    failures.append(f"--max-seconds then --resume: exit {r.returncode} then {r2.returncode}: {r2.stderr.strip()[-300:]}")
 
 # --resume with an empty folder starts from the beginning.
 out = os.path.join(work, "fresh")

@@ -56,6 +56,10 @@ for name, args in scenes.items():
         if shares["count"] != n or len(shares["per_rank"]) != n or not 1 <= shares["balance"] < 2 or \
                 sum(r["items"] for r in shares["per_rank"]) == 0:
             failures.append(f"{name}, {n} ranks: report's ranks {shares}")
+        # Every round reports what it exchanged (the link evaluation's all-gather: nothing with one rank).
+        per_round = [r["bytes_exchanged"] for r in report["solver"]["rounds"]]
+        if (n > 1) != (sum(per_round) > 0) or sum(per_round) > exchanged:
+            failures.append(f"{name}, {n} ranks: rounds' bytes {per_round} against {exchanged} in all")
         # Each rank's links and rays add up to the bake's; each reports its own peak memory.
         per = shares["per_rank"]
         if sum(r["rays"] for r in per) != counts["visibility_rays"] or sum(r["links"] for r in per) < counts["links"] or \

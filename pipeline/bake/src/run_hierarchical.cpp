@@ -210,7 +210,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   for (const IterationStats& it : stats.iterations)
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
-                      {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves}});
+                      {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
+                      {"bytes_exchanged", it.bytes_exchanged}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast},
               {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
               {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},

@@ -103,6 +103,26 @@ int first_different_rank(const std::string& mine, std::string* theirs) {
   return -1;
 }
 
+void all_gather_blocks(void* data, size_t size, const std::vector<size_t>& blocks) {
+  if (!g_started || g_ranks.size == 1) return;
+  std::vector<int> counts(size_t(g_ranks.size)), offsets(size_t(g_ranks.size));
+  for (size_t r = 0; r < counts.size(); ++r) {
+    if (blocks[r + 1] > size_t(INT32_MAX)) throw std::runtime_error("all_gather_blocks: more than 2^31 items");
+    counts[r] = int(blocks[r + 1] - blocks[r]);
+    offsets[r] = int(blocks[r]);
+  }
+  MPI_Datatype item;  // counts in items, not bytes: lists of more than 2 GB
+  MPI_Type_contiguous(int(size), MPI_BYTE, &item);
+  MPI_Type_commit(&item);
+  const auto start = std::chrono::steady_clock::now();
+  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, counts.data(), offsets.data(), item, MPI_COMM_WORLD);
+  g_work.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  MPI_Type_free(&item);
+  const uint64_t mine = uint64_t(counts[size_t(g_ranks.rank)]) * size;
+  g_work.bytes_sent += mine;
+  g_bytes += uint64_t(blocks.back()) * size;  // its own block sent, the others' received
+}
+
 uint64_t ranks_bytes_exchanged() { return g_bytes; }
 
 RankWork& rank_work() { return g_work; }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver.h"
+#include "walkrad/core/ranks.h"
 #include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad {
@@ -60,6 +61,7 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
 void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   RoundState state;
   if (s_.resume) state = load_state(*s_.resume);
+  exchanged_before_ = ranks_bytes_exchanged();  // the rounds' own exchanges, not reading the inputs
   bool& converged_before = state.converged_before;
   for (int it = state.next_round; !state.finished && it < s_.max_iterations; ++it) {
     IterationStats is;
@@ -132,6 +134,9 @@ void Solver::balance_closed() {
 void Solver::record(IterationStats& is, const std::function<void(const IterationStats&)>& progress) {
   is.links = stats_.links;
   is.elements = h_.element_count();
+  const uint64_t exchanged = ranks_bytes_exchanged();
+  is.bytes_exchanged = exchanged - exchanged_before_;
+  exchanged_before_ = exchanged;
   if (is.emitted == Vec3{} && !stats_.iterations.empty()) {  // no solve this round: keep the last
     is.emitted = stats_.iterations.back().emitted;
     is.absorbed = stats_.iterations.back().absorbed;

@@ -257,6 +257,7 @@ class Solver {
   HierarchicalStats& stats_;
   double min_area_ = 0, change_ = 0, change_floor_ = 0;
   double white_ = 0, seen_density_ = 0;
+  uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
   bool direct_weights_ = false;  // display weights from the direct importance R (the first refinement)
   double quantum_area_ = 0;       // a texel of the scene's typical surface: its median polygon side / 32, squared
   std::vector<float> variation_;  // by node (measure_variation)

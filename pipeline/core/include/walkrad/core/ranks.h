@@ -80,18 +80,17 @@ std::vector<size_t> run_my_block(size_t n, const std::function<double(size_t)>& 
   return blocks;
 }
 
+// Items [blocks[r], blocks[r + 1]) of `data` (items of `size` bytes) from rank r to every rank, in
+// place (MPI_IN_PLACE: no second copy of the list). With one rank nothing happens.
+void all_gather_blocks(void* data, size_t size, const std::vector<size_t>& blocks);
+
 // v[blocks[r], blocks[r + 1]) from rank r to every rank (this rank's block is already in v). T is
 // trivially copyable; with one rank nothing happens.
 template <class T>
 void share_blocks(std::vector<T>& v, const std::vector<size_t>& blocks) {
   static_assert(std::is_trivially_copyable_v<T>);
-  if (ranks().size == 1) return;
-  const size_t b = blocks[size_t(ranks().rank)], e = blocks[size_t(ranks().rank) + 1];
-  std::vector<uint8_t> mine((e - b) * sizeof(T));
-  if (e > b) std::memcpy(mine.data(), v.data() + b, mine.size());
-  const std::vector<uint8_t> all = all_gather(mine);
-  if (all.size() != blocks.back() * sizeof(T)) throw std::runtime_error("ranks disagree on the blocks they share");
-  if (!all.empty()) std::memcpy(v.data(), all.data(), all.size());
+  if (blocks.back() != v.size()) throw std::runtime_error("share_blocks: the blocks do not cover the list");
+  all_gather_blocks(v.data(), sizeof(T), blocks);
 }
 
 }  // namespace walkrad

@@ -87,6 +87,7 @@ struct IterationStats {
   Vec3 emitted, absorbed;              // W, at the leaves
   Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
   uint64_t clamped_leaves = 0;         // leaves whose row sum Σ F exceeded 1.5 (irradiance scaled back)
+  uint64_t bytes_exchanged = 0;        // under mpirun: bytes this rank sent and received this round (ranks.h)
 };
 
 struct HierarchicalStats {
