@@ -106,6 +106,12 @@ flipped = bytearray(saved)
 flipped[-1000] ^= 1
 refused("flipped-bit", "damaged checkpoint", checkpoint_bytes=bytes(flipped))
 
+# A folder that cannot be made (its parent is a file): exit 5 before the solve, nothing written.
+out = os.path.join(work, "nowhere")
+r = bake(out, "--checkpoint", os.path.join(plain, "manifest.json", "cp"))
+if r.returncode != 5 or os.path.exists(out) or "cannot write checkpoints there" not in r.stderr:
+    failures.append(f"an unwritable --checkpoint folder: exit {r.returncode}: {r.stderr.strip()[-300:]}")
+
 # Wrong use: --resume needs --checkpoint; the classic method has no rounds to save.
 for args in (["--resume"], ["--checkpoint", os.path.join(work, "cp-classic"), "--method", "classic"]):
     r = bake(os.path.join(work, "misuse"), *args)

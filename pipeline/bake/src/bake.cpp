@@ -118,6 +118,7 @@ BakeSummary bake(const BakeSettings& s) {
   if (ranks().rank == 0)
     for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
   const CheckpointFile checkpoint(s, inputs.scene_hash, inputs.views_hash);
+  if (!s.checkpoint.empty()) checkpoint.check_writable();  // before the long work, not after a round
   bool any_emitter = false;
   for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
   for (const PunctualLight& l : input.lights) any_emitter = any_emitter || max_component(l.intensity) > 0;

@@ -47,6 +47,16 @@ CheckpointFile::CheckpointFile(const BakeSettings& s, const std::string& scene_h
 
 std::string CheckpointFile::path() const { return (std::filesystem::path(dir_) / "solve.checkpoint").string(); }
 
+void CheckpointFile::check_writable() const {
+  if (ranks().rank != 0) return;
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  const std::string probe = path() + ".part";
+  if (ec || !std::ofstream(probe, std::ios::binary | std::ios::app))
+    throw OutputError(dir_ + ": cannot write checkpoints there (--checkpoint)" + (ec ? ": " + ec.message() : ""));
+  if (std::filesystem::file_size(probe, ec) == 0) std::filesystem::remove(probe, ec);  // the probe, not a write cut short
+}
+
 void CheckpointFile::write(int rounds, const std::function<void(ByteWriter&)>& write_state) const {
   if (ranks().rank != 0) return;
   std::error_code ec;

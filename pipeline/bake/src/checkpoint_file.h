@@ -26,6 +26,9 @@ class CheckpointFile {
 
   std::string path() const;
 
+  // Rank 0 makes the folder and tries a file in it, before the long work (OutputError, exit 5).
+  void check_writable() const;
+
   // Rank 0 writes what write_state puts (the other ranks return at once); throws OutputError.
   void write(int rounds, const std::function<void(ByteWriter&)>& write_state) const;
   // False when there is none. Else the rounds it holds and a reader of its state, which every rank
