@@ -28,10 +28,8 @@ template <class Io, class M>
 void each(Io&& io, M& m) {  // Material
   io(m.reflectance), io(m.emission), io(m.transmittance), io(m.reflectance_texture), io(m.emission_texture);
 }
-template <class Io>
-void each_view(Io&& io, const Viewpoint& v) { io(v.position), io(v.forward), io(v.up), io(v.yfov), io(v.aspect); }
-template <class Io>
-void each_view(Io&& io, Viewpoint& v) { io(v.position), io(v.forward), io(v.up), io(v.yfov), io(v.aspect); }
+template <class Io, class V>  // Viewpoint, const or not
+void each_view(Io&& io, V& v) { io(v.position), io(v.forward), io(v.up), io(v.yfov), io(v.aspect); }
 
 void put_views(ByteWriter& out, const std::vector<Viewpoint>& views) {
   out.put(uint64_t(views.size()));

@@ -13,6 +13,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "walkrad/core/file_hash.h"
+
 namespace walkrad {
 
 // Bytes that do not read back as what was written (cut short, too long, from something else).
@@ -158,10 +160,6 @@ inline void Checksum::add(const void* data, size_t size) {
   for (; size > 0; --size) tail_[tail_size_++] = *p++;
 }
 
-inline uint64_t Checksum::value() const {
-  uint64_t h = h_;
-  for (size_t k = 0; k < tail_size_; ++k) h = (h ^ tail_[k]) * 0x100000001b3ull;
-  return h;
-}
+inline uint64_t Checksum::value() const { return fnv1a(tail_, tail_size_, h_); }  // the last bytes one by one
 
 }  // namespace walkrad
