@@ -68,7 +68,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const size_t before = pending_.size();
     const size_t elements_before = h_.element_count();
     if (it == 0) {
-      refine(h_.root(), h_.root(), nullptr);  // as high as links may go: the error is measured from round 1
+      refine_first();  // as high as links may go: the error is measured from round 1
     } else {
       direct_weights_ = it == 1;
       if (it == 1) {

@@ -6,7 +6,11 @@
 #include "solver.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "walkrad/core/rounding.h"
 
@@ -69,12 +73,59 @@ bool Solver::splittable(uint32_t i) const {
   return n.depth < s_.max_depth && n.area * 0.25 >= min_area_;
 }
 
-void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool force) {
+void Solver::self_pairs(uint32_t i, std::vector<std::pair<uint32_t, uint32_t>>& pairs) const {
+  if (!h_[i].cluster) return;
+  const uint32_t count = h_[i].child_count;
+  for (uint32_t a = 0; a < count; ++a)
+    for (uint32_t b = 0; b < count; ++b) {
+      const uint32_t ca = h_.child(h_[i], a), cb = h_.child(h_[i], b);
+      if (ca == cb) self_pairs(ca, pairs);
+      else pairs.push_back({ca, cb});
+    }
+}
+
+void Solver::refine_first() {
+  // refine(root, root) comes down to refine(a, b) for the pairs self_pairs lists, in that order. Before
+  // the first solve only cluster ends split (nothing is solved, so only a cluster too close or a
+  // two-sided one forces a split, and it is the cluster end that splits): the pairs are refined in
+  // parallel, each into its own list, and the lists joined in order, as one serial pass would have
+  // made them. Should an element need splitting (a node made: order matters), the pass is made again
+  // serially.
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  self_pairs(h_.root(), pairs);
+  std::vector<std::vector<NewLink>> found(pairs.size());
+  std::vector<uint64_t> splits(pairs.size(), 0);
+  std::atomic<bool> blocked{false};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end() && !blocked; ++k) {
+      Refinement out{nullptr, &found[k], splits[k], true};
+      refine(out, pairs[k].first, pairs[k].second, nullptr);
+      if (out.blocked) blocked = true;
+    }
+  });
+  if (blocked) {
+    Refinement out = serial_refinement();
+    refine(out, h_.root(), h_.root(), nullptr);
+    return;
+  }
+  size_t total = 0;
+  for (const std::vector<NewLink>& f : found) total += f.size();
+  if (s_.check_limits) s_.check_limits("refinement", (pending_.size() + total) * sizeof(Pending));
+  pending_.reserve(pending_.size() + total);
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    for (const NewLink& f : found[k]) pending_.push_back({f.receiver, f.source, f.need_rays, f.samples, f.volume});
+    stats_.refinements += splits[k];
+    std::vector<NewLink>().swap(found[k]);
+  }
+}
+
+void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool force,
+                    std::vector<uint32_t>* own) {
   if (i == j) {
     if (!h_[i].cluster) return;  // a planar element does not see itself
     const uint32_t count = h_[i].child_count;
     for (uint32_t a = 0; a < count; ++a)
-      for (uint32_t b = 0; b < count; ++b) refine(h_.child(h_[i], a), h_.child(h_[i], b), parent);
+      for (uint32_t b = 0; b < count; ++b) refine(out, h_.child(h_[i], a), h_.child(h_[i], b), parent);
     return;
   }
   {
@@ -99,7 +150,7 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   // a pair that becomes a link needs only its count, up to the thresholds below.
   const bool lazy = compact() && parent;
   std::vector<uint32_t> candidates;
-  if (!lazy) candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
+  if (!lazy) candidates = own ? std::move(*own) : occluders(i, j, shaft, ex_i, ex_j, parent);
   const size_t listed = lazy ? count_compact_candidates(h_.tree(), shaft, *parent, ex_i, ex_j, kManyBlockers + 1)
                         : compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j)
                                     : candidates.size();
@@ -114,14 +165,18 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
           (split_receiver ? h_[j].cluster : h_[i].cluster))
         split_receiver = !split_receiver;  // split the cluster end first
       const uint32_t end = split_receiver ? i : j;
+      if (out.concurrent && !h_[end].cluster && h_[end].child_count == 0) {
+        out.blocked = true;  // a node to make: not while other pairs are refined
+        return;
+      }
       if (lazy) candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
       h_.subdivide(end);
-      ++stats_.refinements;
+      ++out.refinements;
       const uint32_t count = h_[end].child_count;
-      for (uint32_t k = 0; k < count; ++k) {
+      for (uint32_t k = 0; k < count && !out.blocked; ++k) {
         const uint32_t c = h_.child(h_[end], k);
-        if (split_receiver) refine(c, j, &candidates);
-        else refine(i, c, &candidates);
+        if (split_receiver) refine(out, c, j, &candidates);
+        else refine(out, i, c, &candidates);
       }
       return;
     }
@@ -135,9 +190,15 @@ void Solver::refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent,
   if (blockers > kSomeBlockers) samples *= 2;
   if (blockers > kManyBlockers) samples *= 2;
   // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
-  if (s_.check_limits && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
-    s_.check_limits("refinement", 2 * pending_.capacity() * sizeof(Pending));
-  pending_.push_back({i, j, s_.visibility && blockers > size_t(volumes > 0), samples, s_.visibility && volumes > 0});
+  const bool need_rays = s_.visibility && blockers > size_t(volumes > 0), volume = s_.visibility && volumes > 0;
+  if (out.found) {
+    out.found->push_back({i, j, samples, need_rays, volume});
+    return;
+  }
+  std::vector<Pending>& pending = *out.pending;
+  if (s_.check_limits && pending.size() == pending.capacity() && pending.size() >= 65536)
+    s_.check_limits("refinement", 2 * pending.capacity() * sizeof(Pending));
+  pending.push_back({i, j, need_rays, samples, volume});
 }
 
 std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
@@ -180,57 +241,92 @@ std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
                    h_[j].cluster ? UINT32_MAX : h_[j].polygon, nullptr);
 }
 
-void Solver::split_link(uint32_t i, const Link& l, bool receiver) {
-  // The pair's candidates, searched in the tree once and filtered for each child (shaft.h: the
-  // children's shafts lie inside the pair's), not searched again from the root per child.
+void Solver::split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates) {
+  // The pair's candidates, searched in the tree once (ReceiverPlan) and filtered for each child
+  // (shaft.h: the children's shafts lie inside the pair's), not searched again from the root per child.
   const uint32_t j = l.source;
-  const std::vector<uint32_t> candidates = link_candidates(i, l);
-  const uint32_t end = receiver ? i : j;
-  h_.subdivide(end);
+  h_.subdivide(i);
   --stats_.links;
-  for (uint32_t k = 0; k < h_[end].child_count; ++k) {
-    const uint32_t c = h_.child(h_[end], k);
-    if (receiver) refine(c, j, &candidates);
-    else refine(i, c, &candidates);
+  Refinement out = serial_refinement();
+  for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(out, h_.child(h_[i], k), j, &candidates);
+}
+
+Solver::ReceiverPlan Solver::plan_receiver(uint32_t i) const {
+  ReceiverPlan plan;
+  const std::vector<Link>& links = h_[i].links;
+  if (links.empty()) return plan;
+  plan.candidates.resize(links.size());
+  // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
+  // than its tolerance: every link goes down to the children.
+  if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
+    plan.split_receiver = true;
+    for (size_t k = 0; k < links.size(); ++k) plan.candidates[k] = link_candidates(i, links[k]);
+    return plan;
   }
+  // Each link: one that carries more than its share is refined again from here (refine splits it).
+  // A link whose every ray was blocked is first cast again with kHiddenRecast times the rays: a few
+  // rays miss a gap, and a wall between two rooms should not be refined for what they might miss.
+  plan.action.assign(links.size(), kKeep);
+  for (size_t k = 0; k < links.size(); ++k) {
+    const Link& l = links[k];
+    if (l.F == 0 && l.sigma > 0 && l.samples > 0 && l.samples < kHiddenRecast * s_.rays &&
+        worth_splitting(i, l.source, true, nullptr)) {
+      plan.action[k] = kRecast;
+    } else if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
+      plan.action[k] = kSplit;
+      plan.candidates[k] = link_candidates(i, l);
+    }
+  }
+  return plan;
 }
 
 void Solver::refine_existing() {
   update_scales();
   measure_variation();
+  // What to do with each receiver's links depends only on the state before this pass: a split adds
+  // nodes and pending links but changes no existing node's links, radiosity, bounds or measures. So
+  // the decisions and the split links' candidate lists (searched from the tree's root: a quarter of the
+  // refinement's time) are made in parallel, a batch of receivers at a time, and applied in order:
+  // nodes and links come out exactly as from one serial pass, whatever the thread count.
+  constexpr size_t kBatch = 1024;
   const size_t n = h_.nodes().size();
-  for (size_t at = 0; at < n; ++at) {
-    const uint32_t i = uint32_t(at);
-    if (s_.check_limits && i % 4096 == 4095) s_.check_limits("refinement", 0);
-    if (h_[i].links.empty()) continue;
-    std::vector<Link> links = std::move(h_[i].links);
-    h_[i].links.clear();
-    // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
-    // than its tolerance: every link goes down to the children.
-    if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
-      ++stats_.refinements;
-      ++stats_.receiver_splits;
-      for (const Link& l : links) split_link(i, l, true);
-      continue;
-    }
-    // Each link: one that carries more than its share is refined again from here (refine splits it).
-    // A link whose every ray was blocked is first cast again with kHiddenRecast times the rays: a few
-    // rays miss a gap, and a wall between two rooms should not be refined for what they might miss.
-    for (const Link& l : links) {
-      if (l.F == 0 && l.sigma > 0 && l.samples > 0 && l.samples < kHiddenRecast * s_.rays &&
-          worth_splitting(i, l.source, true, nullptr)) {
-        --stats_.links;
-        ++stats_.recast;
-        pending_.push_back({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
+  std::vector<ReceiverPlan> plans;
+  for (size_t first = 0; first < n; first += kBatch) {
+    const size_t last = std::min(n, first + kBatch);
+    plans.assign(last - first, ReceiverPlan{});
+    tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 16), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t at = r.begin(); at != r.end(); ++at) plans[at - first] = plan_receiver(uint32_t(at));
+    });
+    for (size_t at = first; at < last; ++at) {
+      const uint32_t i = uint32_t(at);
+      if (s_.check_limits && i % 4096 == 4095) s_.check_limits("refinement", 0);
+      if (h_[i].links.empty()) continue;
+      ReceiverPlan& plan = plans[at - first];
+      std::vector<Link> links = std::move(h_[i].links);
+      h_[i].links.clear();
+      if (plan.split_receiver) {
+        ++stats_.refinements;
+        ++stats_.receiver_splits;
+        for (size_t k = 0; k < links.size(); ++k) split_link(i, links[k], plan.candidates[k]);
         continue;
       }
-      if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
-        --stats_.links;
-        static const std::vector<uint32_t> kNone;
-        refine(i, l.source, ray_free(l) ? &kNone : nullptr, true);  // searched in refine otherwise
-      } else {
-        h_[i].links.push_back(l);
+      for (size_t k = 0; k < links.size(); ++k) {
+        const Link& l = links[k];
+        if (plan.action[k] == kRecast) {
+          --stats_.links;
+          ++stats_.recast;
+          pending_.push_back({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
+        } else if (plan.action[k] == kSplit) {
+          --stats_.links;
+          static const std::vector<uint32_t> kNone;
+          // Ray-free: no candidate, filtered as a parent's empty list; else the pair's own, searched above.
+          Refinement out = serial_refinement();
+          refine(out, i, l.source, ray_free(l) ? &kNone : nullptr, true, &plan.candidates[k]);
+        } else {
+          h_[i].links.push_back(l);
+        }
       }
+      plan = ReceiverPlan{};  // its lists are spent: free them now
     }
   }
 }

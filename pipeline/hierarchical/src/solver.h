@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "walkrad/formfactor/punctual_lights.h"
@@ -160,11 +161,37 @@ class Solver {
 
   bool splittable(uint32_t i) const;
 
+  // A link refine() found, as a pair refined beside others keeps it until the lists are joined (a
+  // fifth of a Pending: the lists and the round's list are held together for a moment).
+  struct NewLink {
+    uint32_t receiver, source;
+    int32_t samples;
+    bool need_rays, volume;
+  };
+  // Where refine() puts what it finds: the links to evaluate (straight into the round's list, or,
+  // concurrent, into a pair's own) and the count of splits. concurrent: other pairs are refined at
+  // the same time, so no node may be made: a split that would make one sets blocked and stops.
+  struct Refinement {
+    std::vector<Pending>* pending;
+    std::vector<NewLink>* found;
+    uint64_t& refinements;
+    bool concurrent = false;
+    bool blocked = false;
+  };
+  Refinement serial_refinement() { return {&pending_, nullptr, stats_.refinements}; }
+
+  // The first refinement, refine(root, root) with its independent pairs in parallel (refine_first).
+  void refine_first();
+  // The pairs (a, b), a ≠ b, that refine(i, i) comes down to, in the order it takes them.
+  void self_pairs(uint32_t i, std::vector<std::pair<uint32_t, uint32_t>>& pairs) const;
+
   // Refines the interaction of receiver i with source j: links it, drops it, or splits an end and
   // recurses. parent: the candidate occluders of the enclosing link's shaft (null: from the tree).
   // split: split this pair whatever the tests say (refine_existing decided it with the link's own
-  // form factor, which a new pair does not have yet).
-  void refine(uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool split = false);
+  // form factor, which a new pair does not have yet). own: with no parent, the pair's own list,
+  // already searched from the tree (taken).
+  void refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool split = false,
+              std::vector<uint32_t>* own = nullptr);
 
   // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
   // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
@@ -179,8 +206,19 @@ class Solver {
   // children; links whose source or noise error exceeds a share of it get an end split.
   void refine_existing();
 
-  // Replaces link l (to receiver i) by links from the children of the receiver (receiver) or of the source.
-  void split_link(uint32_t i, const Link& l, bool receiver);
+  // What refine_existing does with one receiver's links (plan_receiver, from the state before the
+  // pass): split the receiver (every link goes down to its children), or per link keep it, cast it
+  // again with more rays, or refine it; with the candidate lists of the links to be split.
+  enum LinkAction : uint8_t { kKeep, kRecast, kSplit };
+  struct ReceiverPlan {
+    bool split_receiver = false;
+    std::vector<LinkAction> action;                 // by link, unless the receiver splits
+    std::vector<std::vector<uint32_t>> candidates;  // by link: link_candidates where it is split
+  };
+  ReceiverPlan plan_receiver(uint32_t i) const;
+
+  // Replaces link l (to receiver i) by links from the receiver's children; candidates: the pair's (taken).
+  void split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates);
   // An existing link that needed no rays had no candidate occluder, nor have its children, whose
   // shafts lie inside its own.
   bool ray_free(const Link& l) const;

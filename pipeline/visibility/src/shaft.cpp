@@ -33,9 +33,16 @@ Shaft::Shaft(const Bounds& a, const Bounds& b) {
           const double len = std::sqrt(nk * nk + nl * nl);
           if (len == 0) continue;
           Plane p;
-          p.n[k] = nk / len;
-          p.n[l] = nl / len;
-          p.d = (p.n[k] * ak + p.n[l] * al);
+          p.nk = nk / len;
+          p.nl = nl / len;
+          p.d = (p.nk * ak + p.nl * al);
+          static constexpr double Vec3::*kAxis[3] = {&Vec3::x, &Vec3::y, &Vec3::z};
+          p.k = kAxis[k];
+          p.l = kAxis[l];
+          p.inner_k = p.nk >= 0 ? &Bounds::lo : &Bounds::hi;
+          p.outer_k = p.nk >= 0 ? &Bounds::hi : &Bounds::lo;
+          p.inner_l = p.nl >= 0 ? &Bounds::lo : &Bounds::hi;
+          p.outer_l = p.nl >= 0 ? &Bounds::hi : &Bounds::lo;
           plane_[planes_++] = p;
         }
   // Touching is not overlapping: a polygon that only touches the hull's boundary (the wall beside a
@@ -63,8 +70,7 @@ bool Shaft::overlaps(const Bounds& box) const {
   for (int i = 0; i < planes_; ++i) {
     const Plane& p = plane_[i];
     // The box's corner furthest inside (most negative along n): outside if even it is not inside.
-    const Vec3 inner(p.n.x >= 0 ? box.lo.x : box.hi.x, p.n.y >= 0 ? box.lo.y : box.hi.y, p.n.z >= 0 ? box.lo.z : box.hi.z);
-    if (dot(p.n, inner) >= inner_d_[i]) return false;
+    if (p.nk * (box.*p.inner_k).*p.k + p.nl * (box.*p.inner_l).*p.l >= inner_d_[i]) return false;
   }
   return true;
 }
@@ -75,8 +81,7 @@ bool Shaft::contains(const Bounds& box) const {
   for (int i = 0; i < planes_; ++i) {
     const Plane& p = plane_[i];
     // The box's corner furthest out along n: inside if even it is.
-    const Vec3 outer(p.n.x >= 0 ? box.hi.x : box.lo.x, p.n.y >= 0 ? box.hi.y : box.lo.y, p.n.z >= 0 ? box.hi.z : box.lo.z);
-    if (!(dot(p.n, outer) < inner_d_[i])) return false;
+    if (!(p.nk * (box.*p.outer_k).*p.k + p.nl * (box.*p.outer_l).*p.l < inner_d_[i])) return false;
   }
   return true;
 }

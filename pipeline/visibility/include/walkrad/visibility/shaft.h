@@ -27,9 +27,18 @@ class Shaft {
 
  private:
   Bounds hull_;
+  // Each plane is parallel to the third axis: its normal has two components, on axes k < l (the
+  // third is exactly 0, so two terms give dot(n, x) to the bit).
   struct Plane {
-    Vec3 n;     // outward
-    double d;   // points x with dot(n, x) > d are outside
+    double nk, nl;  // outward
+    double d;       // points x with nk x_k + nl x_l > d are outside
+    double Vec3::*k;
+    double Vec3::*l;
+    // A box's corner furthest inside (most negative along n) and furthest out, on each axis.
+    Vec3 Bounds::*inner_k;
+    Vec3 Bounds::*inner_l;
+    Vec3 Bounds::*outer_k;
+    Vec3 Bounds::*outer_l;
   };
   Plane plane_[12];
   int planes_ = 0;
