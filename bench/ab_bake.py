@@ -40,7 +40,7 @@ def main():
     ap.add_argument("bake_args", nargs=argparse.REMAINDER, help="-- SCENE [bake options]")
     a = ap.parse_args()
     bins = [b.split("=", 1) for b in a.bin]
-    args = [x for x in a.bake_args if x != "--"] if a.bake_args[:1] == ["--"] else a.bake_args
+    args = a.bake_args[1:] if a.bake_args[:1] == ["--"] else a.bake_args
     if len(bins) < 2 or not args:
         ap.error("two --bin NAME=PATH and a scene after -- are needed")
     work = tempfile.mkdtemp(prefix="walkrad-ab-")

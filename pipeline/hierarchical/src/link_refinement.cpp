@@ -98,7 +98,7 @@ void Solver::refine_first() {
   std::atomic<bool> blocked{false};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end() && !blocked; ++k) {
-      Refinement out{nullptr, &found[k], splits[k], true};
+      Refinement out{nullptr, &found[k], splits[k]};
       refine(out, pairs[k].first, pairs[k].second, nullptr);
       if (out.blocked) blocked = true;
     }
@@ -165,7 +165,7 @@ void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<u
           (split_receiver ? h_[j].cluster : h_[i].cluster))
         split_receiver = !split_receiver;  // split the cluster end first
       const uint32_t end = split_receiver ? i : j;
-      if (out.concurrent && !h_[end].cluster && h_[end].child_count == 0) {
+      if (out.found && !h_[end].cluster && h_[end].child_count == 0) {
         out.blocked = true;  // a node to make: not while other pairs are refined
         return;
       }
@@ -241,7 +241,7 @@ std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
                    h_[j].cluster ? UINT32_MAX : h_[j].polygon, nullptr);
 }
 
-void Solver::split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates) {
+void Solver::split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates) {
   // The pair's candidates, searched in the tree once (ReceiverPlan) and filtered for each child
   // (shaft.h: the children's shafts lie inside the pair's), not searched again from the root per child.
   const uint32_t j = l.source;
@@ -255,11 +255,11 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i) const {
   ReceiverPlan plan;
   const std::vector<Link>& links = h_[i].links;
   if (links.empty()) return plan;
-  plan.candidates.resize(links.size());
   // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
   // than its tolerance: every link goes down to the children.
   if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
     plan.split_receiver = true;
+    plan.candidates.resize(links.size());
     for (size_t k = 0; k < links.size(); ++k) plan.candidates[k] = link_candidates(i, links[k]);
     return plan;
   }
@@ -274,6 +274,7 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i) const {
       plan.action[k] = kRecast;
     } else if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
       plan.action[k] = kSplit;
+      if (plan.candidates.empty()) plan.candidates.resize(links.size());  // most receivers split none
       plan.candidates[k] = link_candidates(i, l);
     }
   }

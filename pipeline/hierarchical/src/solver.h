@@ -168,14 +168,13 @@ class Solver {
     int32_t samples;
     bool need_rays, volume;
   };
-  // Where refine() puts what it finds: the links to evaluate (straight into the round's list, or,
-  // concurrent, into a pair's own) and the count of splits. concurrent: other pairs are refined at
-  // the same time, so no node may be made: a split that would make one sets blocked and stops.
+  // Where refine() puts what it finds: the links to evaluate, straight into the round's list
+  // (pending), or into a pair's own (found: other pairs are refined at the same time, so no node may
+  // be made, and a split that would make one sets blocked and stops); and the count of splits.
   struct Refinement {
     std::vector<Pending>* pending;
     std::vector<NewLink>* found;
     uint64_t& refinements;
-    bool concurrent = false;
     bool blocked = false;
   };
   Refinement serial_refinement() { return {&pending_, nullptr, stats_.refinements}; }
@@ -213,12 +212,12 @@ class Solver {
   struct ReceiverPlan {
     bool split_receiver = false;
     std::vector<LinkAction> action;                 // by link, unless the receiver splits
-    std::vector<std::vector<uint32_t>> candidates;  // by link: link_candidates where it is split
+    std::vector<std::vector<uint32_t>> candidates;  // by link, where one is split: link_candidates
   };
   ReceiverPlan plan_receiver(uint32_t i) const;
 
-  // Replaces link l (to receiver i) by links from the receiver's children; candidates: the pair's (taken).
-  void split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates);
+  // Replaces link l (to receiver i) by links from the receiver's children; candidates: the pair's.
+  void split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates);
   // An existing link that needed no rays had no candidate occluder, nor have its children, whose
   // shafts lie inside its own.
   bool ray_free(const Link& l) const;
