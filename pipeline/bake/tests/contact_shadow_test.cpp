@@ -6,15 +6,17 @@
 // - Within 2 cm of each outline (1 cm outside it) the bake agrees with the reference: beside the lamp
 //   on the ceiling within 3% (issue 23's target; measured 1.2%, 2.7% before links took what they see
 //   of their sources, Link::seen); beside the box on the floor, where the box's vertical edges cast
-//   penumbrae into the corners, within 15% RMS (measured 4.8%; 8.1% when vertices were read a
-//   thousandth of the way into their faces instead of 5%, 8.4% before Link::seen, 11.7% before
-//   vertices took their own row in a closed scene; issue 23 asks 3%, which needs shadow boundaries in
-//   the mesh: discontinuity meshing, not built yet).
+//   penumbrae into the corners, within 15% RMS (measured 4.65%, 4.79% before the discontinuity cuts;
+//   8.1% when vertices were read a thousandth of the way into their faces instead of 5%, 8.4% before
+//   Link::seen, 11.7% before vertices took their own row in a closed scene; issue 23 asks 3%: the
+//   worst points lie in the box's umbra, lit only indirectly, 5-9% off, which the cuts do not touch).
 // - In the box's penumbra on the floor (5 cm wide, where the lamp is partly hidden) the error is at
-//   most 2.5 times the error in the lit floor beyond it, or 2.5% where that is below 1% (measured
-//   2.17% against 0.70% with 65,536 reference paths a point; 2.36% against 0.60% before 0e56ab2 (an
-//   overfilled row at a vertex taken from the sources seen in part); 2.23% against 0.83% before Link::seen;
-//   issue 23 asks 2×). Before the final gather's adaptive mesh ranked its splits, the penumbra was a
+//   most twice the error in the lit floor beyond it (issue 23), or 1% where that is below 0.5%
+//   (measured 0.95% against 0.70% with 65,536 reference paths a point, once the floor is cut along the
+//   penumbra's edges (discontinuity_mesh.h) and a vertex's first shadow rays ask the lamp's corners too;
+//   2.17% against 0.70% before; 2.36% against 0.60% before 0e56ab2 (an
+//   overfilled row at a vertex taken from the sources seen in part); 2.23% against 0.83% before
+//   Link::seen). Before the final gather's adaptive mesh ranked its splits, the penumbra was a
 //   14 cm ramp, 13% off (2.7×); before the worst-first queue and 32² points per penumbra vertex, 4.2%
 //   against 1.8%.
 #include <cmath>
@@ -213,8 +215,8 @@ TEST_F(ContactShadow, PenumbraErrorNearTheLitError) {
   // 65,536 paths a point: the reference's own noise, half of what 16,384 leave, is not the bake's.
   const double e_penumbra = rms(compare(penumbra, kFloor, 65536).error), e_lit = rms(compare(lit, kFloor, 65536).error);
   std::printf("floor: penumbra RMS %.2f%%, lit RMS %.2f%%\n", 100 * e_penumbra, 100 * e_lit);
-  // 2.5 times the lit error, or 1% where that is below what the reference itself can tell.
-  EXPECT_LE(e_penumbra, 2.5 * std::max(e_lit, 0.01));
+  // Twice the lit error, or 1% where that is below what the reference itself can tell.
+  EXPECT_LE(e_penumbra, 2.0 * std::max(e_lit, 0.005));
 }
 
 }  // namespace

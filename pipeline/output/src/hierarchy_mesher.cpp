@@ -1,11 +1,13 @@
 #include "walkrad/output/hierarchy_mesher.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "walkrad/output/discontinuity_mesh.h"
 #include "walkrad/output/surface_mesher.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/point_radiosity.h"
@@ -46,6 +48,43 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     tbb::parallel_for(size_t(0), faces.size(), [&](size_t f) {
       if (seen(f)) candidates[f] = direct->candidates(leaf[f]);
     });
+    // Discontinuity meshing (discontinuity_mesh.h): the seen faces cut along the shadow boundaries of
+    // their emitters, within as many expected crossings as an eighth of the faces (at least 1,024).
+    if (point.discontinuities && direct->emitter_count()) {
+      std::vector<uint8_t> seen_face(faces.size());
+      for (size_t f = 0; f < faces.size(); ++f) seen_face[f] = seen(f);
+      const BoundarySelection chosen =
+          select_boundaries(h, *direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024));
+      if (point.counts) {
+        point.counts->found = chosen.found;
+        point.counts->drawn = chosen.segments;
+      }
+      if (chosen.segments) {
+        // Four times the chunks' position error (--position-tolerance, 1e-5 of the diagonal by
+        // default; the mesher welds within 1e-6): a vertex and an edge each move by up to √3 of it, so
+        // anything closer could meet in the chunks.
+        const double snap = 4 * std::max(point.position_error, 1e-6) * length(h.scene().bounds().diagonal());
+        CutFaces cut = cut_faces(faces, chosen.by_polygon, snap);
+        if (point.counts)
+          for (const auto& applied : cut.applied) point.counts->faces_cut += !applied.empty();
+        std::vector<uint32_t> cut_leaf(cut.from.size());
+        std::vector<EmitterRanges> cut_candidates(cut.from.size());
+        for (size_t k = 0; k < cut.from.size(); ++k) {
+          cut_leaf[k] = leaf[cut.from[k]];
+          // A piece gathers the emitters whose boundaries cut its face too: a leaf the solution found
+          // wholly hidden from the lamp (no link to it) lies partly in its penumbra once cut there.
+          const uint32_t f = cut.from[k];
+          cut_candidates[k] = candidates[f];
+          for (uint32_t g : cut.applied[f]) {
+            const uint32_t e = chosen.emitter[faces[f].polygon][g];
+            merge_ranges(cut_candidates[k], {{e, e + 1}});
+          }
+        }
+        faces.swap(cut.faces);
+        leaf.swap(cut_leaf);
+        candidates.swap(cut_candidates);
+      }
+    }
     gather.seen = seen;
     gather.direct = [&](const Vec3& x, const Vec3& normal, const uint32_t* around, size_t count) {
       EmitterRanges from = candidates[around[0]];

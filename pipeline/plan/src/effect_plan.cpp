@@ -137,10 +137,11 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                         const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes) {
   for (const auto& [name, value] : overrides) {
     if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
-        name != "punctual" && name != "transmission" && name != "textures" && name != "volumes" && name != "gather")
+        name != "punctual" && name != "transmission" && name != "textures" && name != "volumes" && name != "gather" &&
+        name != "discontinuities")
       throw InputError("--effect", name,
                        "unknown effect (known: indirect, visibility, importance, clusters, closure, punctual, transmission, "
-                       "textures, volumes, gather)",
+                       "textures, volumes, gather, discontinuities)",
                        kExitBadArguments);
     if (value != "on" && value != "off")
       throw InputError("--effect", name, "expected on or off, not '" + value + "'", kExitBadArguments);
@@ -222,6 +223,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                                               : "visibility is off: there is nothing to see through",
                      kExitBadArguments);
   plan.gather = plan_gather(scene, views, method, overrides);
+  plan.discontinuities = plan_discontinuities(scene, plan.gather, plan.visibility, overrides);
   if (plan.transmission.on && !plan.indirect.on && !plan.indirect.forced) {
     plan.indirect.on = true;
     plan.indirect.reason = "light passes through transmitting surfaces: it needs the gather";
@@ -243,7 +245,7 @@ nlohmann::json EffectPlan::to_json() const {
           {"importance", effect_json(importance)}, {"clusters", effect_json(clusters)}, {"closure", effect_json(closure)},
           {"punctual", effect_json(punctual)}, {"transmission", effect_json(transmission)},
           {"textures", effect_json(textures)}, {"volumes", effect_json(volumes)},
-          {"gather", effect_json(gather)}};
+          {"gather", effect_json(gather)}, {"discontinuities", effect_json(discontinuities)}};
 }
 
 std::string EffectPlan::explain() const {
@@ -259,6 +261,7 @@ std::string EffectPlan::explain() const {
   line("textures", textures);
   line("volumes", volumes);
   line("gather", gather);
+  line("discontinuities", discontinuities);
   return out;
 }
 
@@ -282,6 +285,26 @@ Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, cons
   apply_override(e, "gather", overrides);
   if (e.on && (emitters + lights == 0 || method != "hierarchical"))
     throw InputError("--effect", "gather", emitters + lights == 0 ? "the scene has no emitter" : "the final gather exists only in the hierarchical method",
+                     kExitBadArguments);
+  return e;
+}
+
+Effect plan_discontinuities(const Scene& scene, const Effect& gather, const Effect& visibility,
+                            const std::map<std::string, std::string>& overrides) {
+  size_t emitters = 0;
+  for (const Polygon& p : scene.polygons) emitters += scene.materials[p.material].emits() ? 1 : 0;
+  Effect e;
+  e.on = gather.on && emitters > 0 && visibility.on;
+  e.reason = !gather.on      ? "the final gather is off: no vertex takes its direct light at the point"
+             : emitters == 0 ? "no emitting polygon: punctual lights cast hard shadows, with no penumbra to follow"
+             : !visibility.on
+                 ? "visibility is off: nothing casts a shadow"
+                 : "the seen faces are cut along the shadow boundaries (penumbra and umbra edges) the " + std::to_string(emitters) +
+                       " emitting polygons cast past their occluders, so that the shading bends where the light does";
+  apply_override(e, "discontinuities", overrides);
+  if (e.on && (!gather.on || emitters == 0))
+    throw InputError("--effect", "discontinuities",
+                     emitters == 0 ? "the scene has no emitting polygon" : "discontinuity meshing needs the final gather (--effect gather=on)",
                      kExitBadArguments);
   return e;
 }

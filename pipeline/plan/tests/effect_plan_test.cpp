@@ -116,6 +116,33 @@ TEST(EffectPlan, NoVolumeClustersNoVolumetricVisibility) {
   EXPECT_THROW(plan_effects(s, rays, {}, false, "hierarchical", {{"volumes", "on"}}, &volumes), InputError);
 }
 
+// Discontinuity meshing follows the gather where an emitting polygon can be occluded: on with a block
+// in the lit box and viewpoints, off in the empty box (nothing casts a shadow), without viewpoints
+// (no gather) and in a scene lit by punctual lights alone; forcing it on without the gather is refused.
+TEST(EffectPlan, DiscontinuitiesWhereTheGatherMeetsShadows) {
+  const std::vector<Viewpoint> views = {{"v", {0.5, 0.5, 0.9}, {0, 0, -1}, {0, 1, 0}, 1.0, 1.0}};
+  const Scene block = box_with_block(), empty = lit_box(0.5);
+  const RayScene block_rays(block), empty_rays(empty);
+  const EffectPlan on = plan_effects(block, block_rays, views, false, "hierarchical", {});
+  EXPECT_TRUE(on.gather.on && on.discontinuities.on) << on.discontinuities.reason;
+  EXPECT_FALSE(plan_effects(empty, empty_rays, views, false, "hierarchical", {}).discontinuities.on);
+  const EffectPlan no_views = plan_effects(block, block_rays, {}, false, "hierarchical", {});
+  EXPECT_FALSE(no_views.discontinuities.on);
+  EXPECT_NE(no_views.discontinuities.reason.find("final gather is off"), std::string::npos) << no_views.discontinuities.reason;
+  Scene punctual = box_with_block();
+  punctual.materials[1].emission = Vec3(0, 0, 0);
+  punctual.lights.push_back(PunctualLight{});
+  punctual.lights.back().position = Vec3(0.5, 0.5, 0.8);
+  punctual.lights.back().intensity = Vec3(1, 1, 1);
+  const RayScene punctual_rays(punctual);
+  const EffectPlan lamps = plan_effects(punctual, punctual_rays, views, false, "hierarchical", {});
+  EXPECT_TRUE(lamps.gather.on);
+  EXPECT_FALSE(lamps.discontinuities.on);
+  EXPECT_THROW(plan_effects(block, block_rays, views, false, "hierarchical", {{"gather", "off"}, {"discontinuities", "on"}}),
+               InputError);
+  EXPECT_FALSE(plan_effects(block, block_rays, views, false, "hierarchical", {{"discontinuities", "off"}}).discontinuities.on);
+}
+
 TEST_F(EffectPlanBake, EmptyBoxCastsNoVisibilityRaysAndMatchesTheFullSolve) {
   for (const std::string method : {"hierarchical", "classic"}) {
     const nlohmann::json planned = bake_scene(lit_box(0.5), "planned-" + method, method);

@@ -5,36 +5,11 @@
 #include <vector>
 
 #include "walkrad/scene/cluster_tree.h"
+#include "walkrad/scene/convex_loop.h"
 
 namespace walkrad {
 
 namespace {
-
-using Loop = std::vector<Vec3>;  // a convex polygon's corners, counter-clockwise
-
-double loop_area(const Loop& l) {
-  Vec3 n;
-  for (size_t k = 0; k < l.size(); ++k) n += cross(l[k], l[(k + 1) % l.size()]);
-  return 0.5 * length(n);
-}
-
-// Splits a convex loop by the plane dot(x, n) = d into the parts on either side (either may be empty).
-void split_loop(const Loop& l, const Vec3& n, double d, Loop& below, Loop& above) {
-  below.clear();
-  above.clear();
-  for (size_t k = 0; k < l.size(); ++k) {
-    const Vec3& a = l[k];
-    const Vec3& b = l[(k + 1) % l.size()];
-    const double da = dot(a, n) - d, db = dot(b, n) - d;
-    if (da <= 0) below.push_back(a);
-    if (da >= 0) above.push_back(a);
-    if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
-      const Vec3 x = a + (b - a) * (da / (da - db));
-      below.push_back(x);
-      above.push_back(x);
-    }
-  }
-}
 
 // A cut: the plane through an edge (a, b) lying on polygon q's plane, perpendicular to q.
 struct Cut {
@@ -113,21 +88,6 @@ bool inside(const Loop& footprint, const Vec3& normal, const Vec3& x) {
   for (size_t k = 0; k < footprint.size(); ++k)
     if (dot(cross(footprint[(k + 1) % footprint.size()] - footprint[k], x - footprint[k]), normal) <= 0) return false;
   return true;
-}
-
-void emit_loop(const Loop& l, const Polygon& like, std::vector<Polygon>& out) {
-  // A fan of quads (and a last triangle) from l[0]: convex pieces of a convex loop.
-  for (size_t k = 1; k + 1 < l.size(); k += 2) {
-    Polygon p = like;
-    if (k + 2 < l.size()) {
-      p.count = 4;
-      p.v = {l[0], l[k], l[k + 1], l[k + 2]};
-    } else {
-      p.count = 3;
-      p.v = {l[0], l[k], l[k + 1], Vec3{}};
-    }
-    if (polygon_area(p) > 0) out.push_back(p);
-  }
 }
 
 }  // namespace

@@ -34,7 +34,13 @@ class DirectGather {
   // lights: punctual lights (null: none); rays: occluders (null: nothing occludes).
   DirectGather(const Hierarchy& h, const std::vector<PunctualLight>* lights, const RayScene* rays);
 
+  struct Emitter {
+    Polygon shape;
+    Vec3 normal, emission;
+    uint32_t polygon;
+  };
   size_t emitter_count() const { return emitters_.size(); }
+  const Emitter& emitter(uint32_t k) const { return emitters_[k]; }
   bool has_lights() const { return lights_ != nullptr; }
 
   // The emitters that can light a leaf element: under the sources of the links on its chain.
@@ -51,11 +57,6 @@ class DirectGather {
           int penumbra = kVertexPenumbra) const;
 
  private:
-  struct Emitter {
-    Polygon shape;
-    Vec3 normal, emission;
-    uint32_t polygon;
-  };
   EmitterRanges ranges_of(const HNode& source) const;
   double visible_fraction(const Vec3& x, const Vec3& n, const Vec3& from, const Emitter& e, int penumbra,
                           uint64_t& rays_cast) const;

@@ -24,6 +24,14 @@ struct PointSolution {
   // walkthrough; null: every polygon), when on.
   bool gather = false;
   const std::vector<uint8_t>* seen = nullptr;
+  // With the gather: the seen faces cut along their emitters' shadow boundaries (discontinuity_mesh.h);
+  // counts, when given, receives how many boundaries were found and drawn, and how many faces they cut.
+  bool discontinuities = false;
+  double position_error = 1e-5;  // of the scene's diagonal: the chunks' position quantum (cut_faces' snap)
+  struct Counts {
+    uint64_t found = 0, drawn = 0, faces_cut = 0;
+  };
+  Counts* counts = nullptr;
 };
 
 // exposure: display colour = B/π × exposure, clamped to [0, 1].

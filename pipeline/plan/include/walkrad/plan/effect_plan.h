@@ -20,6 +20,8 @@
 //   gather      — the final gather (final_gather.h): area emitters' direct light evaluated at the output
 //                 vertices of the polygons the viewpoints see (hierarchical method, with viewpoints;
 //                 forced on without them, at every vertex).
+//   discontinuities — with the gather, emitting polygons and visibility: the seen faces cut along the
+//                 emitters' shadow boundaries (discontinuity_mesh.h, output stage).
 // Indirect light and visibility take punctual lights into account (a reflector in front of one; a
 // light outside a convex enclosure).
 // Each choice can be forced on or off (`walkrad bake --effect NAME=on|off`); `--explain` prints the plan,
@@ -45,7 +47,8 @@ struct Effect {
 };
 
 struct EffectPlan {
-  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes, gather;
+  Effect indirect, visibility, importance, clusters, closure, punctual, transmission, textures, volumes, gather,
+      discontinuities;
   bool closed = false;  // no ray from any surface escapes (hierarchical method only): rows scaled to 1
   nlohmann::json to_json() const;
   std::string explain() const;  // one line per effect
@@ -61,6 +64,11 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
 // plan_effects'.
 Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
                    const std::map<std::string, std::string>& overrides);
+
+// The discontinuities entry: on with the gather where emitting polygons can be occluded; overrides as
+// plan_effects'.
+Effect plan_discontinuities(const Scene& scene, const Effect& gather, const Effect& visibility,
+                            const std::map<std::string, std::string>& overrides);
 
 // Applies an --effect override (NAME → "on" or "off", already checked) to e: forced, with the analysis's
 // reason kept.

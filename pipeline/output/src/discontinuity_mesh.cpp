@@ -1,0 +1,170 @@
+#include "walkrad/output/discontinuity_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "walkrad/formfactor/form_factor.h"
+#include "walkrad/scene/convex_loop.h"
+#include "walkrad/visibility/shaft.h"
+
+namespace walkrad {
+
+namespace {
+
+constexpr double kShortest = 2e-3;  // of the receiver's size
+
+struct Ranked {
+  double contrast;
+  uint32_t polygon, order, emitter;
+  uint64_t crossings;  // faces of the polygon it is expected to cross
+  BoundarySegment segment;
+};
+
+// Whether segment [a, b] (in the loop's plane) has a part longer than a thousandth of it strictly
+// inside the convex loop (normal: the loop's).
+bool passes_through(const Loop& l, const Vec3& normal, const Vec3& a, const Vec3& b) {
+  double t0 = 0, t1 = 1;
+  for (size_t e = 0; e < l.size() && t1 - t0 > 1e-3; ++e) {
+    const Vec3 inward = cross(normal, l[(e + 1) % l.size()] - l[e]);
+    const double s0 = dot(a - l[e], inward), s1 = dot(b - l[e], inward);
+    if (s0 <= 0 && s1 <= 0) return false;
+    if (s0 < 0) t0 = std::max(t0, s0 / (s0 - s1));
+    if (s1 < 0) t1 = std::min(t1, s0 / (s0 - s1));
+  }
+  return t1 - t0 > 1e-3;
+}
+
+// A convex loop's thickness: twice its area over its longest edge (a sliver's width).
+double thickness(const Loop& l) {
+  double longest = 0;
+  for (size_t k = 0; k < l.size(); ++k) longest = std::max(longest, length(l[(k + 1) % l.size()] - l[k]));
+  return longest > 0 ? 2 * loop_area(l) / longest : 0.0;
+}
+
+}  // namespace
+
+BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const std::vector<MeshFace>& faces,
+                                    const std::vector<uint8_t>& seen, const std::vector<EmitterRanges>& emitters,
+                                    uint64_t budget) {
+  const Scene& scene = h.scene();
+  const size_t polygons = scene.polygons.size();
+  BoundarySelection out;
+  out.by_polygon.resize(polygons);
+  out.emitter.resize(polygons);
+  // Per polygon: its seen faces' emitters, their mean area and reflectance.
+  std::vector<EmitterRanges> from(polygons);
+  std::vector<double> area(polygons, 0.0), count(polygons, 0.0), rho(polygons, 0.0);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!seen[f]) continue;
+    const uint32_t p = faces[f].polygon;
+    merge_ranges(from[p], emitters[f]);
+    area[p] += faces[f].area;
+    count[p] += 1;
+    rho[p] = std::max(rho[p], luminance(faces[f].rho));
+  }
+  const double tol = 1e-6 * std::max(length(scene.bounds().diagonal()), 1e-30);
+  std::vector<std::vector<Ranked>> found(polygons);
+  tbb::parallel_for(size_t(0), polygons, [&](size_t p) {
+    if (from[p].empty() || rho[p] <= 0) return;
+    const Polygon& receiver = scene.polygons[p];
+    const Bounds rb = polygon_bounds(receiver);
+    const double side = std::sqrt(area[p] / count[p]);
+    // Shorter boundaries are left out: the corner of a box a hair above the floor casts its bottom
+    // edges' shadows a tenth of a millimetre long, slivers for nothing.
+    const double shortest = kShortest * std::sqrt(polygon_area(receiver));
+    std::vector<Polygon> occluders;
+    for (const auto& [begin, end] : from[p])
+      for (uint32_t e = begin; e < end; ++e) {
+        const DirectGather::Emitter& emitter = direct.emitter(e);
+        if (emitter.polygon == p) continue;
+        occluders.clear();
+        for (uint32_t o : shaft_candidates(h.tree(), Shaft(polygon_bounds(emitter.shape), rb), emitter.polygon, uint32_t(p)))
+          occluders.push_back(scene.polygons[o]);
+        if (occluders.empty()) continue;
+        for (const BoundarySegment& g : shadow_boundaries(emitter.shape, receiver, occluders, tol)) {
+          if (length(g.b - g.a) < shortest) continue;
+          const Vec3 middle = (g.a + g.b) * 0.5;
+          const double contrast = rho[p] * luminance(emitter.emission) * point_to_polygon(middle, polygon_normal(receiver), emitter.shape);
+          if (contrast <= 0) continue;
+          found[p].push_back({contrast, uint32_t(p), uint32_t(found[p].size()), e, 1 + uint64_t(length(g.b - g.a) / side), g});
+        }
+      }
+  });
+  std::vector<Ranked> all;
+  for (auto& list : found) all.insert(all.end(), list.begin(), list.end());
+  out.found = all.size();
+  std::sort(all.begin(), all.end(), [](const Ranked& a, const Ranked& b) {
+    if (a.contrast != b.contrast) return a.contrast > b.contrast;
+    return a.polygon != b.polygon ? a.polygon < b.polygon : a.order < b.order;
+  });
+  uint64_t used = 0;
+  for (const Ranked& r : all) {
+    if (used + r.crossings > budget) continue;
+    used += r.crossings;
+    out.by_polygon[r.polygon].push_back(r.segment);
+    out.emitter[r.polygon].push_back(r.emitter);
+    ++out.segments;
+  }
+  return out;
+}
+
+CutFaces cut_faces(const std::vector<MeshFace>& faces, const std::vector<std::vector<BoundarySegment>>& by_polygon,
+                   double snap, double min_share) {
+  std::vector<std::vector<Polygon>> pieces(faces.size());
+  CutFaces out;
+  out.applied.resize(faces.size());
+  tbb::parallel_for(size_t(0), faces.size(), [&](size_t f) {
+    const MeshFace& face = faces[f];
+    if (face.polygon >= by_polygon.size() || by_polygon[face.polygon].empty()) return;
+    std::vector<Loop> loops = {Loop(face.shape.v.begin(), face.shape.v.begin() + face.shape.count)}, next;
+    Loop below, above;
+    const double min_area = min_share * face.area;
+    bool cut = false;
+    const std::vector<BoundarySegment>& segments = by_polygon[face.polygon];
+    for (uint32_t k = 0; k < segments.size(); ++k) {
+      const BoundarySegment& g = segments[k];
+      const Vec3 d = g.b - g.a;
+      const Vec3 n = normalize(cross(d, face.normal));
+      const double offset = dot(n, g.a);
+      next.clear();
+      for (const Loop& l : loops) {
+        // Cut where the segment passes through the piece (the part of it inside is longer than a
+        // thousandth of the segment), by its whole line: a segment ending inside a piece cuts it whole.
+        if (passes_through(l, face.normal, g.a, g.b)) {
+          split_loop(l, n, offset, below, above, snap);
+          if (below.size() >= 3 && above.size() >= 3 && loop_area(below) > min_area && loop_area(above) > min_area &&
+              thickness(below) > 4 * snap && thickness(above) > 4 * snap) {
+            next.push_back(below);
+            next.push_back(above);
+            if (out.applied[f].empty() || out.applied[f].back() != k) out.applied[f].push_back(k);
+            cut = true;
+            continue;
+          }
+        }
+        next.push_back(l);
+      }
+      loops.swap(next);
+    }
+    if (!cut) return;
+    for (const Loop& l : loops) emit_loop(l, face.shape, pieces[f]);
+  });
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (pieces[f].empty()) {
+      out.faces.push_back(faces[f]);
+      out.from.push_back(uint32_t(f));
+      continue;
+    }
+    for (const Polygon& shape : pieces[f]) {
+      MeshFace piece = faces[f];
+      piece.shape = shape;
+      piece.area = polygon_area(shape);
+      out.faces.push_back(piece);
+      out.from.push_back(uint32_t(f));
+    }
+  }
+  return out;
+}
+
+}  // namespace walkrad
