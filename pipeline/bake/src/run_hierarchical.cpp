@@ -207,7 +207,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     drawn.counts = &boundaries;
     SurfaceMesh mesh = mesh_hierarchy(*h, exposure, drawn);
     if (point.discontinuities)
-      counts["shadow_boundaries"] = {{"found", boundaries.found}, {"drawn", boundaries.drawn}, {"faces_cut", boundaries.faces_cut}};
+      counts["shadow_boundaries"] = {{"found", boundaries.found}, {"hidden", boundaries.hidden}, {"drawn", boundaries.drawn},
+                                     {"faces_cut", boundaries.faces_cut}};
     return mesh;
   };
   std::vector<double> lum;

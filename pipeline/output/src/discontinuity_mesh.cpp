@@ -43,11 +43,27 @@ double thickness(const Loop& l) {
   return longest > 0 ? 2 * loop_area(l) / longest : 0.0;
 }
 
+// Whether g.flips is seen from one side of g's middle and hidden from the other (points a thousandth of
+// their distance to it off the middle, in the receiver's plane; the emitter point moved a thousandth
+// of the way to the emitter's centre, so that the ray does not graze the emitter's own edge).
+bool changes_across(const RayScene& rays, const BoundarySegment& g, const Vec3& normal, const DirectGather::Emitter& e,
+                    const Vec3& centre) {
+  const Vec3 middle = (g.a + g.b) * 0.5;
+  const Vec3 side = normalize(cross(g.b - g.a, normal));
+  const double step = 1e-3 * length(g.flips - middle);
+  const Vec3 target = g.flips + (centre - g.flips) * 1e-3 + e.normal * rays.offset();
+  RayScene::Segment s[2] = {{middle + side * step + normal * rays.offset(), target},
+                            {middle - side * step + normal * rays.offset(), target}};
+  uint8_t blocked[2] = {0, 0};
+  rays.occluded(s, 2, blocked);
+  return blocked[0] != blocked[1];
+}
+
 }  // namespace
 
 BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const std::vector<MeshFace>& faces,
                                     const std::vector<uint8_t>& seen, const std::vector<EmitterRanges>& emitters,
-                                    uint64_t budget) {
+                                    uint64_t budget, const RayScene* rays) {
   const Scene& scene = h.scene();
   const size_t polygons = scene.polygons.size();
   BoundarySelection out;
@@ -66,9 +82,11 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
   }
   const double tol = 1e-6 * std::max(length(scene.bounds().diagonal()), 1e-30);
   std::vector<std::vector<Ranked>> found(polygons);
+  std::vector<uint64_t> hidden(polygons, 0);
   tbb::parallel_for(size_t(0), polygons, [&](size_t p) {
     if (from[p].empty() || rho[p] <= 0) return;
     const Polygon& receiver = scene.polygons[p];
+    const Vec3 normal = polygon_normal(receiver);
     const Bounds rb = polygon_bounds(receiver);
     const double side = std::sqrt(area[p] / count[p]);
     // Shorter boundaries are left out: the corner of a box a hair above the floor casts its bottom
@@ -83,8 +101,13 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
         for (uint32_t o : shaft_candidates(h.tree(), Shaft(polygon_bounds(emitter.shape), rb), emitter.polygon, uint32_t(p)))
           occluders.push_back(scene.polygons[o]);
         if (occluders.empty()) continue;
+        const Vec3 centre = polygon_centroid(emitter.shape);
         for (const BoundarySegment& g : shadow_boundaries(emitter.shape, receiver, occluders, tol)) {
           if (length(g.b - g.a) < shortest) continue;
+          if (rays && !changes_across(*rays, g, normal, emitter, centre)) {
+            ++hidden[p];
+            continue;
+          }
           const Vec3 middle = (g.a + g.b) * 0.5;
           const double contrast = rho[p] * luminance(emitter.emission) * point_to_polygon(middle, polygon_normal(receiver), emitter.shape);
           if (contrast <= 0) continue;
@@ -95,6 +118,7 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
   std::vector<Ranked> all;
   for (auto& list : found) all.insert(all.end(), list.begin(), list.end());
   out.found = all.size();
+  for (uint64_t n : hidden) out.hidden += n;
   std::sort(all.begin(), all.end(), [](const Ranked& a, const Ranked& b) {
     if (a.contrast != b.contrast) return a.contrast > b.contrast;
     return a.polygon != b.polygon ? a.polygon < b.polygon : a.order < b.order;

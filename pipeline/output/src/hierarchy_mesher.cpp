@@ -54,9 +54,10 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
       std::vector<uint8_t> seen_face(faces.size());
       for (size_t f = 0; f < faces.size(); ++f) seen_face[f] = seen(f);
       const BoundarySelection chosen =
-          select_boundaries(h, *direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024));
+          select_boundaries(h, *direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024), point.rays);
       if (point.counts) {
         point.counts->found = chosen.found;
+        point.counts->hidden = chosen.hidden;
         point.counts->drawn = chosen.segments;
       }
       if (chosen.segments) {

@@ -89,8 +89,9 @@ std::vector<BoundarySegment> shadow_boundaries(const Polygon& emitter, const Pol
       if (faces(e.occluder, x) != f) return true;
     return false;
   };
-  auto add = [&](Vec3 a, Vec3 b) {
-    if (clip_to(receiver, qn, a, b, tol)) out.push_back({a, b});
+  // flips(middle): the emitter point seen to appear or vanish there.
+  auto add = [&](Vec3 a, Vec3 b, const auto& flips) {
+    if (clip_to(receiver, qn, a, b, tol)) out.push_back({a, b, flips((a + b) * 0.5)});
   };
   // Heights of the points that cast: below the emitter's corner (or edge point) by a thousandth of
   // its height at least, so that a projection stays within a thousand times the distance.
@@ -115,7 +116,7 @@ std::vector<BoundarySegment> shadow_boundaries(const Polygon& emitter, const Pol
           const Vec3 x = a + (b - a) * t;
           return e + (x - e) * (he / (he - height(x)));
         };
-        add(project(t0), project(t1));
+        add(project(t0), project(t1), [&](const Vec3&) { return e; });
       }
       // VE: each emitter edge's image through this edge's first corner, where the edge is a silhouette
       // from the emitter's centre (its next edge takes the other corner).
@@ -128,7 +129,11 @@ std::vector<BoundarySegment> shadow_boundaries(const Polygon& emitter, const Pol
           const Vec3 x = d0 + (d1 - d0) * t;
           return a + (a - x) * (ha / (height(x) - ha));
         };
-        add(image(t0), image(t1));
+        // In line with the middle and the corner a: where that line meets the emitter's plane.
+        add(image(t0), image(t1), [&](const Vec3& x) {
+          const double along = dot(a - x, en);
+          return std::fabs(along) > 0 ? x + (a - x) * (dot(emitter.v[0] - x, en) / along) : d0;
+        });
       }
     }
   }

@@ -50,6 +50,9 @@ TEST(ShadowBoundaries, PanelHalfwayCastsItsPenumbraAndUmbraLines) {
     const int k = on_line(g, lines, along_z);
     EXPECT_GE(k, 0) << "(" << g.a.x << ", " << g.a.z << ")-(" << g.b.x << ", " << g.b.z << ")";
     if (k >= 0) hit.insert({k, along_z});
+    // The emitter point whose visibility flips across the middle lies on the light's outline.
+    EXPECT_NEAR(g.flips.y, 2, 1e-9);
+    EXPECT_NEAR(std::max(std::fabs(g.flips.x), std::fabs(g.flips.z)), 0.5, 1e-9);
   }
   EXPECT_EQ(hit.size(), 8u);  // every line, both ways
 }

@@ -25,11 +25,15 @@ struct BoundarySelection {
   std::vector<std::vector<BoundarySegment>> by_polygon;
   std::vector<std::vector<uint32_t>> emitter;  // by polygon, of each segment: its emitter (DirectGather's index)
   uint64_t segments = 0;  // kept
-  uint64_t found = 0;     // before the budget
+  uint64_t found = 0;     // active, before the budget
+  uint64_t hidden = 0;    // found where nothing changes (the emitter point seen from both sides or neither)
 };
+// rays (null: none tested): a boundary is kept only where the emitter point it is drawn for
+// (BoundarySegment::flips) is seen from one side of its middle and hidden from the other: an event that
+// something else hides (a box's shadow boundary inside another's umbra) changes nothing there.
 BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const std::vector<MeshFace>& faces,
                                     const std::vector<uint8_t>& seen, const std::vector<EmitterRanges>& emitters,
-                                    uint64_t budget);
+                                    uint64_t budget, const RayScene* rays);
 
 // Cuts each face along the segments of its polygon that cross it, each by its whole line within the
 // face (the pieces stay convex; a piece of more than 4 corners is fanned), skipping a cut that would

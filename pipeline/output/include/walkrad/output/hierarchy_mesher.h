@@ -29,7 +29,7 @@ struct PointSolution {
   bool discontinuities = false;
   double position_error = 1e-5;  // of the scene's diagonal: the chunks' position quantum (cut_faces' snap)
   struct Counts {
-    uint64_t found = 0, drawn = 0, faces_cut = 0;
+    uint64_t found = 0, hidden = 0, drawn = 0, faces_cut = 0;
   };
   Counts* counts = nullptr;
 };

@@ -20,6 +20,9 @@ namespace walkrad {
 
 struct BoundarySegment {
   Vec3 a, b;
+  // The point of the emitter whose visibility changes across the segment's middle: the corner (EV),
+  // or the point of the emitter edge in line with the middle and the occluder's corner (VE).
+  Vec3 flips;
 };
 
 // The EV and VE boundaries cast on `receiver`'s plane by `emitter` (its front towards the receiver)
