@@ -109,7 +109,7 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
             continue;
           }
           const Vec3 middle = (g.a + g.b) * 0.5;
-          const double contrast = rho[p] * luminance(emitter.emission) * point_to_polygon(middle, polygon_normal(receiver), emitter.shape);
+          const double contrast = rho[p] * luminance(emitter.emission) * point_to_polygon(middle, normal, emitter.shape);
           if (contrast <= 0) continue;
           found[p].push_back({contrast, uint32_t(p), uint32_t(found[p].size()), e, 1 + uint64_t(length(g.b - g.a) / side), g});
         }
