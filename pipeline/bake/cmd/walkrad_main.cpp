@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 31))->capture_default_str();
   std::vector<std::string> effect_overrides;
   bake_cmd->add_option("--effect", effect_overrides,
-                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures|volumes|gather=on|off (repeatable)");
+                       "force an effect on or off: indirect|visibility|importance|clusters|closure|punctual|transmission|textures|volumes|gather|discontinuities=on|off (repeatable)");
   bake_cmd->add_option("--penumbra-ratio", bs.volume_penumbra_ratio,
                        "hierarchical: a link sees through a volume cluster where its objects are smaller than this × the "
                        "link's penumbra width there")
