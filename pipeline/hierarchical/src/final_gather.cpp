@@ -64,7 +64,10 @@ DirectGather::DirectGather(const Hierarchy& h, const std::vector<PunctualLight>*
     const HNode& root = h[h.polygon_root(p)];
     if (max_component(root.emission) <= 0) continue;
     polygon_emitter_[p] = uint32_t(emitters_.size());
-    emitters_.push_back({root.shape, root.normal, root.emission, p});
+    Emitter e{root.shape, root.normal, root.emission, p, {}};
+    const Vec3 centre = polygon_centroid(e.shape);
+    for (int c = 0; c < e.shape.count; ++c) e.inset[size_t(c)] = e.shape.v[c] + (centre - e.shape.v[c]) * kCornerInset;
+    emitters_.push_back(e);
     emitter_position_.push_back(k);
   }
   // Each cluster's emitters from its own links, merged with its parent's (parents come first).
@@ -108,9 +111,9 @@ double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& 
   Rng rng(point_seed(x), e.polygon);
   double seen = 0, total = 0;
   int arrived = 0, cast = 0;  // rays that arrive, rays cast
-  std::array<RayScene::Segment, kFinest * kFinest + 4> segments;
+  std::array<RayScene::Segment, kFinest * kFinest + std::tuple_size_v<decltype(Emitter::inset)>> segments;
   std::array<double, kFinest * kFinest> kernel;
-  std::array<uint8_t, kFinest * kFinest + 4> blocked;
+  std::array<uint8_t, kFinest * kFinest + std::tuple_size_v<decltype(Emitter::inset)>> blocked;
   for (const int m : {kFirst, std::clamp(penumbra, kFirst, kFinest)}) {
     int count = 0;
     for (int i = 0; i < m; ++i)
@@ -128,11 +131,7 @@ double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& 
     // of the emitter, which 4 × 4 jittered points all missed a third of the time (test ContactShadow:
     // such points came out as umbra, −11%, once the discontinuity cuts put vertices there).
     const int corners = m == kFirst && penumbra == kFinest ? e.shape.count : 0;
-    const Vec3 centre = polygon_centroid(e.shape);
-    for (int c = 0; c < corners; ++c) {
-      const Vec3 y = e.shape.v[c] + (centre - e.shape.v[c]) * kCornerInset;
-      segments[size_t(count + c)] = {from, y + e.normal * off};
-    }
+    for (int c = 0; c < corners; ++c) segments[size_t(count + c)] = {from, e.inset[size_t(c)] + e.normal * off};
     rays_->occluded(segments.data(), size_t(count + corners), blocked.data());
     rays_cast += uint64_t(count + corners);
     for (int k = 0; k < count; ++k) {

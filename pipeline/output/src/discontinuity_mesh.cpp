@@ -22,18 +22,11 @@ struct Ranked {
   BoundarySegment segment;
 };
 
-// Whether segment [a, b] (in the loop's plane) has a part longer than a thousandth of it strictly
-// inside the convex loop (normal: the loop's).
+// Whether segment [a, b] (in the loop's plane) has a part longer than a thousandth of it inside the
+// convex loop (normal: the loop's).
 bool passes_through(const Loop& l, const Vec3& normal, const Vec3& a, const Vec3& b) {
-  double t0 = 0, t1 = 1;
-  for (size_t e = 0; e < l.size() && t1 - t0 > 1e-3; ++e) {
-    const Vec3 inward = cross(normal, l[(e + 1) % l.size()] - l[e]);
-    const double s0 = dot(a - l[e], inward), s1 = dot(b - l[e], inward);
-    if (s0 <= 0 && s1 <= 0) return false;
-    if (s0 < 0) t0 = std::max(t0, s0 / (s0 - s1));
-    if (s1 < 0) t1 = std::min(t1, s0 / (s0 - s1));
-  }
-  return t1 - t0 > 1e-3;
+  double t0, t1;
+  return clip_segment(l.data(), l.size(), normal, a, b, t0, t1) && t1 - t0 > 1e-3;
 }
 
 // A convex loop's thickness: twice its area over its longest edge (a sliver's width).

@@ -5,23 +5,17 @@
 #include <utility>
 #include <cmath>
 
+#include "walkrad/scene/convex_loop.h"
+
 namespace walkrad {
 
 namespace {
 
-// Clips segment [a, b] on the receiver's plane to the convex receiver (its inward edge half-planes).
+// Clips segment [a, b] on the receiver's plane to the convex receiver.
 bool clip_to(const Polygon& q, const Vec3& qn, Vec3& a, Vec3& b, double tol) {
-  double t0 = 0, t1 = 1;
-  const Vec3 d = b - a;
-  for (int e = 0; e < q.count; ++e) {
-    const Vec3 inward = cross(qn, q.v[(e + 1) % q.count] - q.v[e]);
-    const double s0 = dot(a - q.v[e], inward), s1 = dot(b - q.v[e], inward);
-    if (s0 < 0 && s1 < 0) return false;
-    if (s0 < 0) t0 = std::max(t0, s0 / (s0 - s1));
-    if (s1 < 0) t1 = std::min(t1, s0 / (s0 - s1));
-    if (t0 >= t1) return false;
-  }
-  const Vec3 a0 = a;
+  double t0, t1;
+  if (!clip_segment(q.v.data(), q.count, qn, a, b, t0, t1)) return false;
+  const Vec3 a0 = a, d = b - a;
   a = a0 + d * t0;
   b = a0 + d * t1;
   return length(b - a) > tol;

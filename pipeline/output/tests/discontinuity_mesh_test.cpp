@@ -100,7 +100,7 @@ TEST(CutFaces, PiecesKeepTheAreaAndTheMeshStaysCrackFree) {
   std::vector<MeshFace> faces;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) faces.push_back(square(i, j, 1, 0));
-  const BoundarySegment g{{0.2, 0, 0.5}, {2.5, 0, 2.9}};
+  const BoundarySegment g{{0.2, 0, 0.5}, {2.5, 0, 2.9}, {}};
   const CutFaces cut = cut_faces(faces, {{g}}, 1e-9);
   ASSERT_GT(cut.faces.size(), faces.size());
   ASSERT_EQ(cut.from.size(), cut.faces.size());
@@ -118,7 +118,9 @@ TEST(CutFaces, PiecesKeepTheAreaAndTheMeshStaysCrackFree) {
   for (size_t f = 0; f < faces.size(); ++f) {
     cut_count += !cut.applied[f].empty();
     const double x0 = faces[f].shape.v[0].x, z0 = faces[f].shape.v[0].z;
-    if (x0 >= 3 || z0 >= 3 || (x0 == 0 && z0 >= 2) || (x0 == 1 && z0 == 0)) EXPECT_TRUE(cut.applied[f].empty()) << x0 << ", " << z0;
+    if (x0 >= 3 || z0 >= 3 || (x0 == 0 && z0 >= 2) || (x0 == 1 && z0 == 0)) {
+      EXPECT_TRUE(cut.applied[f].empty()) << x0 << ", " << z0;
+    }
   }
   EXPECT_EQ(cut_count, 5u);
   // The mesher anchors the points the cut leaves on uncut neighbours' edges: no T-junction.
@@ -136,7 +138,7 @@ TEST(CutFaces, PiecesKeepTheAreaAndTheMeshStaysCrackFree) {
 
 TEST(CutFaces, ASliverIsNotCut) {
   const std::vector<MeshFace> faces = {square(0, 0, 1, 0)};
-  const BoundarySegment g{{1e-5, 0, -1}, {1e-5, 0, 2}};  // 10 µm from the face's edge
+  const BoundarySegment g{{1e-5, 0, -1}, {1e-5, 0, 2}, {}};  // 10 µm from the face's edge
   const CutFaces cut = cut_faces(faces, {{g}}, 1e-9);
   EXPECT_EQ(cut.faces.size(), 1u);
   EXPECT_TRUE(cut.applied[0].empty());

@@ -265,10 +265,19 @@ std::string EffectPlan::explain() const {
   return out;
 }
 
+namespace {
+
+size_t emitting_polygons(const Scene& scene) {
+  size_t n = 0;
+  for (const Polygon& p : scene.polygons) n += scene.materials[p.material].emits() ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
 Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
                    const std::map<std::string, std::string>& overrides) {
-  size_t emitters = 0;
-  for (const Polygon& p : scene.polygons) emitters += scene.materials[p.material].emits() ? 1 : 0;
+  const size_t emitters = emitting_polygons(scene);
   const size_t lights = scene.lights.size();
   Effect e;
   e.on = emitters + lights > 0 && method == "hierarchical" && !views.empty();
@@ -291,8 +300,7 @@ Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, cons
 
 Effect plan_discontinuities(const Scene& scene, const Effect& gather, const Effect& visibility,
                             const std::map<std::string, std::string>& overrides) {
-  size_t emitters = 0;
-  for (const Polygon& p : scene.polygons) emitters += scene.materials[p.material].emits() ? 1 : 0;
+  const size_t emitters = emitting_polygons(scene);
   Effect e;
   e.on = gather.on && emitters > 0 && visibility.on;
   e.reason = !gather.on      ? "the final gather is off: no vertex takes its direct light at the point"

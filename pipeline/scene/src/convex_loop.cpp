@@ -1,5 +1,6 @@
 #include "walkrad/scene/convex_loop.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace walkrad {
@@ -29,6 +30,20 @@ void split_loop(const Loop& l, const Vec3& n, double d, Loop& below, Loop& above
       above.push_back(x);
     }
   }
+}
+
+bool clip_segment(const Vec3* corners, size_t n, const Vec3& normal, const Vec3& a, const Vec3& b, double& t0, double& t1) {
+  t0 = 0;
+  t1 = 1;
+  for (size_t e = 0; e < n; ++e) {
+    const Vec3 inward = cross(normal, corners[(e + 1) % n] - corners[e]);
+    const double s0 = dot(a - corners[e], inward), s1 = dot(b - corners[e], inward);
+    if (s0 < 0 && s1 < 0) return false;
+    if (s0 < 0) t0 = std::max(t0, s0 / (s0 - s1));
+    if (s1 < 0) t1 = std::min(t1, s0 / (s0 - s1));
+    if (t0 >= t1) return false;
+  }
+  return true;
 }
 
 void emit_loop(const Loop& l, const Polygon& like, std::vector<Polygon>& out) {

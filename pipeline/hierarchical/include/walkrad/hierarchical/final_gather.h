@@ -14,6 +14,7 @@
 // gathered (a light in another room costs no ray).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -38,6 +39,7 @@ class DirectGather {
     Polygon shape;
     Vec3 normal, emission;
     uint32_t polygon;
+    std::array<Vec3, 4> inset;  // its corners a hundredth of the way in towards its centre (visible_fraction)
   };
   size_t emitter_count() const { return emitters_.size(); }
   const Emitter& emitter(uint32_t k) const { return emitters_[k]; }

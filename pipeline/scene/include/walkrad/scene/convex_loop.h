@@ -17,6 +17,10 @@ double loop_area(const Loop& l);
 // no new corner falls within tol of an old one.
 void split_loop(const Loop& l, const Vec3& n, double d, Loop& below, Loop& above, double tol = 0);
 
+// The part [t0, t1] of segment [a, b] (in the plane of the convex polygon corners[0..n), unit normal
+// `normal`, counter-clockwise around it) that lies inside the polygon; false when none does.
+bool clip_segment(const Vec3* corners, size_t n, const Vec3& normal, const Vec3& a, const Vec3& b, double& t0, double& t1);
+
 // Appends l as a fan of quads (and a last triangle) from l[0], each a copy of `like` with new corners:
 // convex pieces of a convex loop. Pieces of zero area are left out.
 void emit_loop(const Loop& l, const Polygon& like, std::vector<Polygon>& out);
