@@ -208,7 +208,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     SurfaceMesh mesh = mesh_hierarchy(*h, exposure, drawn);
     if (point.discontinuities)
       counts["shadow_boundaries"] = {{"found", boundaries.found}, {"hidden", boundaries.hidden}, {"drawn", boundaries.drawn},
-                                     {"faces_cut", boundaries.faces_cut}};
+                                     {"faces_cut", boundaries.faces_cut},
+                                     {"contact_bands", boundaries.contact_bands}};
     return mesh;
   };
   std::vector<double> lum;

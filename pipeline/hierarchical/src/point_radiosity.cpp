@@ -190,6 +190,11 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
     // in part, whose visibility the point does not know; those seen whole are exact here (the shade).
     return n.emission + mul(n.rho, H_open + H * ((1 - f_open) / row));
   }
+  if (gathered && n.balanced && f_open >= 1 && row > 0 && scalable_row(f_open)) {
+    // The sources seen whole fill the hemisphere by themselves: those seen in part are hidden here
+    // (beside a box, the walls behind it that its leaf's ancestors half saw: 10% bright).
+    return n.emission + mul(n.rho, H_open / f_open);
+  }
   H += H_open;
   row += f_open;
   // Gathered: the links' direct light is left for the gather's exact D, and a closed scene's row

@@ -11,9 +11,14 @@
 #include "walkrad/output/surface_mesher.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/point_radiosity.h"
+#include "walkrad/scene/contact_split.h"
 #include "walkrad/scene/transmission_twins.h"
 
 namespace walkrad {
+
+namespace {
+constexpr uint32_t kNoEmitter = UINT32_MAX;  // a cut that no emitter draws (a contact band)
+}  // namespace
 
 SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolution& point) {
   std::vector<MeshFace> faces;
@@ -53,14 +58,27 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     if (point.discontinuities && direct->emitter_count()) {
       std::vector<uint8_t> seen_face(faces.size());
       for (size_t f = 0; f < faces.size(); ++f) seen_face[f] = seen(f);
-      const BoundarySelection chosen =
+      BoundarySelection chosen =
           select_boundaries(h, *direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024), point.rays);
       if (point.counts) {
         point.counts->found = chosen.found;
         point.counts->hidden = chosen.hidden;
         point.counts->drawn = chosen.segments;
       }
-      if (chosen.segments) {
+      // And along the near-contact bands beside covers (contact_split.h), outside the budget: four
+      // segments a cover, wherever the walkthrough sees the polygon under it.
+      std::vector<uint8_t> seen_polygon(h.scene().polygons.size(), 0);
+      for (size_t f = 0; f < faces.size(); ++f) seen_polygon[faces[f].polygon] |= seen_face[f];
+      const std::vector<std::vector<ContactBand>> bands = contact_bands(h.scene(), seen_polygon);
+      uint64_t banded = 0;
+      for (size_t p = 0; p < bands.size(); ++p)
+        for (const ContactBand& b : bands[p]) {
+          chosen.by_polygon[p].push_back({b.a, b.b, b.a});
+          chosen.emitter[p].push_back(kNoEmitter);
+          ++banded;
+        }
+      if (point.counts) point.counts->contact_bands = banded;
+      if (chosen.segments + banded) {
         // Four times the chunks' position error (--position-tolerance, 1e-5 of the diagonal by
         // default; the mesher welds within 1e-6): a vertex and an edge each move by up to √3 of it, so
         // anything closer could meet in the chunks.
@@ -78,7 +96,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
           cut_candidates[k] = candidates[f];
           for (uint32_t g : cut.applied[f]) {
             const uint32_t e = chosen.emitter[faces[f].polygon][g];
-            merge_ranges(cut_candidates[k], {{e, e + 1}});
+            if (e != kNoEmitter) merge_ranges(cut_candidates[k], {{e, e + 1}});
           }
         }
         faces.swap(cut.faces);

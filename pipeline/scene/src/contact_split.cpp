@@ -84,6 +84,32 @@ void cover_cuts(const Polygon& q, const Vec3& qn, const Loop& footprint, double 
   }
 }
 
+// q's bounds grown by the gap a cover may leave (kCoverGap of q's size; the test in cover_footprint is
+// against the smaller of the two).
+Bounds reach_of(const Polygon& q, double tol) {
+  Bounds qb = polygon_bounds(q);
+  const double reach = std::max(tol, kCoverGap * std::sqrt(polygon_area(q)));
+  qb.extend(qb.lo - Vec3(reach, reach, reach));
+  qb.extend(qb.hi + Vec3(reach, reach, reach));
+  return qb;
+}
+
+// Calls f(p) for every polygon p other than qi whose bounds touch qb (a tree query), in tree order:
+// deterministic.
+template <class F>
+void for_each_near(const ClusterTree& tree, const Scene& scene, uint32_t qi, const Bounds& qb, std::vector<int32_t>& stack, F&& f) {
+  stack.assign(1, 0);
+  while (!stack.empty() && !tree.nodes.empty()) {
+    const ClusterNode& node = tree.nodes[size_t(stack.back())];
+    stack.pop_back();
+    const Bounds& b = node.bounds;
+    if (b.hi.x < qb.lo.x || b.lo.x > qb.hi.x || b.hi.y < qb.lo.y || b.lo.y > qb.hi.y || b.hi.z < qb.lo.z || b.lo.z > qb.hi.z) continue;
+    if (!node.leaf()) { stack.push_back(node.child[1]); stack.push_back(node.child[0]); continue; }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i)
+      if (tree.polygons[i] != qi) f(scene.polygons[tree.polygons[i]]);
+  }
+}
+
 bool inside(const Loop& footprint, const Vec3& normal, const Vec3& x) {
   for (size_t k = 0; k < footprint.size(); ++k)
     if (dot(cross(footprint[(k + 1) % footprint.size()] - footprint[k], x - footprint[k]), normal) <= 0) return false;
@@ -107,33 +133,17 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
   for (uint32_t qi = 0; qi < scene.polygons.size(); ++qi) {
     const Polygon& q = scene.polygons[qi];
     const Vec3 qn = polygon_normal(q);
-    Bounds qb = polygon_bounds(q);
-    // Near enough for a cover: the gap it may leave (kCoverGap of q's size; the test in cover_footprint
-    // is against the smaller of the two).
-    const double reach = std::max(tol, kCoverGap * std::sqrt(polygon_area(q)));
-    qb.extend(qb.lo - Vec3(reach, reach, reach));
-    qb.extend(qb.hi + Vec3(reach, reach, reach));
+    const Bounds qb = reach_of(q, tol);
     cuts.clear();
     covers.clear();
-    // Polygons whose bounds touch q's (a tree query), in tree order: deterministic.
-    stack.assign(1, 0);
-    while (!stack.empty() && !tree.nodes.empty()) {
-      const ClusterNode& node = tree.nodes[stack.back()];
-      stack.pop_back();
-      const Bounds& b = node.bounds;
-      if (b.hi.x < qb.lo.x || b.lo.x > qb.hi.x || b.hi.y < qb.lo.y || b.lo.y > qb.hi.y || b.hi.z < qb.lo.z || b.lo.z > qb.hi.z) continue;
-      if (!node.leaf()) { stack.push_back(node.child[1]); stack.push_back(node.child[0]); continue; }
-      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-        if (tree.polygons[i] == qi) continue;
-        const Polygon& p = scene.polygons[tree.polygons[i]];
-        contact_cuts(q, qn, p, tol, cuts);
-        Loop footprint = cover_footprint(q, qn, p, tol);
-        if (!footprint.empty()) {
-          cover_cuts(q, qn, footprint, tol, cuts);
-          covers.push_back(std::move(footprint));
-        }
+    for_each_near(tree, scene, qi, qb, stack, [&](const Polygon& p) {
+      contact_cuts(q, qn, p, tol, cuts);
+      Loop footprint = cover_footprint(q, qn, p, tol);
+      if (!footprint.empty()) {
+        cover_cuts(q, qn, footprint, tol, cuts);
+        covers.push_back(std::move(footprint));
       }
-    }
+    });
     if (cuts.empty() && covers.empty()) {
       out.polygons.push_back(q);
       continue;
@@ -195,6 +205,49 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
         ++stats.covered;
       }
       emit_loop(l, like, out.polygons);
+    }
+  }
+  return out;
+}
+
+std::vector<std::vector<ContactBand>> contact_bands(const Scene& scene, const std::vector<uint8_t>& wanted, double tolerance) {
+  std::vector<std::vector<ContactBand>> out(scene.polygons.size());
+  const double tol = tolerance > 0 ? tolerance : 1e-6 * length(scene.bounds().diagonal());
+  const ClusterTree tree = build_cluster_tree(scene);
+  std::vector<int32_t> stack;
+  std::vector<Loop> covers;
+  std::vector<double> gaps;
+  for (uint32_t qi = 0; qi < scene.polygons.size(); ++qi) {
+    if (qi >= wanted.size() || !wanted[qi]) continue;
+    const Polygon& q = scene.polygons[qi];
+    const Vec3 qn = polygon_normal(q);
+    covers.clear();
+    gaps.clear();
+    for_each_near(tree, scene, qi, reach_of(q, tol), stack, [&](const Polygon& p) {
+      Loop footprint = cover_footprint(q, qn, p, tol);
+      if (footprint.empty()) return;
+      covers.push_back(std::move(footprint));
+      gaps.push_back(dot(p.v[0] - q.v[0], qn));
+    });
+    for (size_t c = 0; c < covers.size(); ++c) {
+      const Loop& footprint = covers[c];
+      const double w = kContactBand * gaps[c];
+      for (size_t k = 0; k < footprint.size(); ++k) {
+        // The edge moved out by w and lengthened by w at either end: a rectangle's grown outline.
+        const Vec3 a = footprint[k], b = footprint[(k + 1) % footprint.size()];
+        const double len = length(b - a);
+        if (len <= tol) continue;
+        const Vec3 along = (b - a) / len, away = cross(along, qn);
+        const Vec3 a2 = a + (away - along) * w, b2 = b + (away + along) * w;
+        double t0 = 0, t1 = 1;
+        if (!clip_segment(q.v.data(), size_t(q.count), qn, a2, b2, t0, t1) || (t1 - t0) * (len + 2 * w) <= tol) continue;
+        const ContactBand band{a2 + (b2 - a2) * t0, a2 + (b2 - a2) * t1};
+        // Not where another cover lies over it: the underside of a box beside the floor piece around it
+        // is covered by the piece under the box, and is no outline's surroundings.
+        bool covered = false;
+        for (const Loop& f : covers) covered = covered || inside(f, qn, (band.a + band.b) * 0.5);
+        if (!covered) out[qi].push_back(band);
+      }
     }
   }
   return out;

@@ -30,6 +30,7 @@ struct PointSolution {
   double position_error = 1e-5;  // of the scene's diagonal: the chunks' position quantum (cut_faces' snap)
   struct Counts {
     uint64_t found = 0, hidden = 0, drawn = 0, faces_cut = 0;
+    uint64_t contact_bands = 0;  // near-contact band segments cut along (contact_split.h)
   };
   Counts* counts = nullptr;
 };
