@@ -6,18 +6,20 @@
 // - Within 2 cm of each outline (1 cm outside it) the bake agrees with the reference: beside the lamp
 //   on the ceiling within 3% (issue 23's target; measured 1.2%, 2.7% before links took what they see
 //   of their sources, Link::seen); beside the box on the floor, where the box's vertical edges cast
-//   penumbrae into the corners, within 8% RMS (measured 4.9-5.5%; issue 23 asks 3%: the points in the
-//   box's umbra, lit only indirectly, are 4-8% bright, as the box's bottom elements send their mean
-//   where these points see mostly the first centimetres above the floor). 4.5% before the near-contact bands and the overfilled row's rule,
-//   but only because a vertex 0.7 mm from the outline, dark under the box's edge, was spread over the
-//   point's triangle: refined to --error 0.01 it read 7.9% (−14% to +1%), now 0.99% (the test below);
-//   4.79% before the discontinuity cuts; 8.1% when vertices were read a thousandth of the way into their
-//   faces instead of 5%, 8.4% before Link::seen, 11.7% before vertices took their own row in a closed
-//   scene.
+//   penumbrae into the corners, within issue 23's 3% RMS (measured 2.67%, 2.85% against a reference of
+//   262,144 paths a point; the points in the box's umbra are 0-6% bright). 4.9% before the box's
+//   faces, as sources, were taken part by part where the floor's leaves are finer (ClusterGather::
+//   resolve_close_sources): a floor point 1 cm away sees mostly their first centimetres, which their
+//   bottom elements averaged with the brighter ones above. 4.5% before the near-contact bands and the
+//   overfilled row's rule, but only because a vertex 0.7 mm from the outline, dark under the box's
+//   edge, was spread over the point's triangle: refined to --error 0.01 it read 7.9% (−14% to +1%),
+//   now 0.84% (the test below); 4.79% before the discontinuity cuts; 8.1% when vertices were read a
+//   thousandth of the way into their faces instead of 5%, 8.4% before Link::seen, 11.7% before
+//   vertices took their own row in a closed scene.
 // - In the box's penumbra on the floor (5 cm wide, where the lamp is partly hidden) the error is at
 //   most twice the error in the lit floor beyond it (issue 23), or 1% where that is below 0.5%
-//   (measured 0.95% against 0.70% with 65,536 reference paths a point, once the floor is cut along the
-//   penumbra's edges (discontinuity_mesh.h) and a vertex's first shadow rays ask the lamp's corners too;
+//   (measured 0.88% against 0.70% with 65,536 reference paths a point, 0.95% before the box's faces
+//   were taken part by part, once the floor is cut along the penumbra's edges (discontinuity_mesh.h) and a vertex's first shadow rays ask the lamp's corners too;
 //   2.17% against 0.70% before; 2.36% against 0.60% before 0e56ab2 (an
 //   overfilled row at a vertex taken from the sources seen in part); 2.23% against 0.83% before
 //   Link::seen). Before the final gather's adaptive mesh ranked its splits, the penumbra was a
@@ -197,7 +199,9 @@ TEST_F(ContactShadow, AgreesWithTheReferenceBesideEachOutline) {
   for (const bool floor : {true, false}) {
     const std::vector<Vec3> points = floor ? around(kBoxLo[0], kBoxHi[0], kBoxLo[2], kBoxHi[2], 0.0)
                                            : around(2 - kLampHalf, 2 + kLampHalf, 2 - kLampHalf, 2 + kLampHalf, kRoom);
-    const Compared c = compare(points, floor ? kFloor : kCeiling);
+    // The floor with 65,536 paths a point: its RMS is held to issue 23's 3%, where the reference's own
+    // noise at 16,384 (about 0.3% a point) would count.
+    const Compared c = floor ? compare(points, kFloor, 65536) : compare(points, kCeiling);
     double worst = 0;
     for (size_t k = 0; k < points.size(); ++k) {
       worst = std::max(worst, std::fabs(c.error[k]));
@@ -209,13 +213,13 @@ TEST_F(ContactShadow, AgreesWithTheReferenceBesideEachOutline) {
     std::printf("%s, 1 cm outside the %s: RMS %.2f%%, worst %.2f%% over %zu points\n", floor ? "floor" : "ceiling",
                 floor ? "box" : "lamp", 100 * rms(c.error), 100 * worst, points.size());
     if (floor) {
-      EXPECT_LT(rms(c.error), 0.08);
+      EXPECT_LT(rms(c.error), 0.03);
     }
   }
 }
 
 // The hard setting beside the default: at --error 0.01 the floor beside the box converges to the
-// reference (measured 0.99% RMS; before the contact bands and the overfilled row's rule, 7.9%, −14% to
+// reference (measured 0.84% RMS; before the contact bands and the overfilled row's rule, 7.9%, −14% to
 // +1%: finer, farther).
 TEST_F(ContactShadow, BesideTheBoxConvergesWithTheError) {
   BakeSettings s;

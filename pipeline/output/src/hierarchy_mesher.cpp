@@ -32,7 +32,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
   if (!point.on) return mesh_faces(faces, exposure);
   // The mesher asks for a face's points one after another on one thread: the leaf's gather is kept
   // between them (LeafRadiosity), per thread; the clusters' part once for all (ClusterGather).
-  const ClusterGather clusters(h, point.indirect, point.lights, point.rays);
+  ClusterGather clusters(h, point.indirect, point.lights, point.rays);
   struct Cached {
     uint32_t leaf = UINT32_MAX;
     std::unique_ptr<LeafRadiosity> radiosity;
@@ -53,6 +53,11 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     tbb::parallel_for(size_t(0), faces.size(), [&](size_t f) {
       if (seen(f)) candidates[f] = direct->candidates(leaf[f]);
     });
+    // The seen leaves' close sources taken part by part (ClusterGather::resolve_close_sources).
+    std::vector<uint32_t> seen_leaves;
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (seen(f)) seen_leaves.push_back(leaf[f]);
+    clusters.resolve_close_sources(seen_leaves);
     // Discontinuity meshing (discontinuity_mesh.h): the seen faces cut along the shadow boundaries of
     // their emitters, within as many expected crossings as an eighth of the faces (at least 1,024).
     if (point.discontinuities && direct->emitter_count()) {

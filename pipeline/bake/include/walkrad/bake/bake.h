@@ -32,10 +32,10 @@ struct BakeSettings {
   int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
   double exposure = 0;      // 0: automatic from the viewpoints
   int threads = 0;          // 0: all cores
-  uint64_t chunk_triangles = 16384;
+  uint64_t chunk_triangles = 16384;  // largest chunk, triangles (a lone leaf cluster may exceed it)
   bool compress = true;              // Draco (KHR_draco_mesh_compression); false: plain glTF
   double position_tolerance = 1e-5;  // Draco: position error, fraction of the scene's diagonal
-  double radiosity_tolerance = 1e-3; // Draco: _RADIOSITY error, fraction of the radiosity shown as white  // largest chunk, triangles (a lone leaf cluster may exceed it)
+  double radiosity_tolerance = 1e-3; // Draco: _RADIOSITY error, fraction of the radiosity shown as white
   double tolerance = 1e-7;  // solver stop: every element's last update below tolerance × its radiosity
   int max_iterations = 10000;
   bool progress = true;     // progress lines on stderr

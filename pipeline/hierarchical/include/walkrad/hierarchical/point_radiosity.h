@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "walkrad/hierarchical/hierarchy.h"
@@ -42,6 +43,23 @@ class ClusterGather {
   Vec3 sent(const Link& l, bool gathered) const;  // what a link takes from its source (Link::seen)
   double row(uint32_t polygon) const { return row_[polygon]; }
 
+  // Near-contact sources: a leaf element sends one mean, but a point a fraction of its size away sees
+  // mostly its nearest part (a floor point 1 cm from a box sees the first centimetres of the box's face,
+  // which its bottom element, 7.5 cm tall, averages with brighter ones above). For every leaf element
+  // that is a close source (within kPartRadii of its radius) of one of `leaves`' links, its
+  // kPartSide² parts and how their radiosity, evaluated at their centres (LeafRadiosity::at, without
+  // these parts), departs from the leaf's mean: LeafRadiosity then takes such a source part by part.
+  // In parallel over the sources; the result depends on no thread count.
+  void resolve_close_sources(const std::vector<uint32_t>& leaves);
+  static constexpr int kPartSide = 4;
+  struct SourceParts {
+    std::array<Polygon, kPartSide * kPartSide> shape;
+    std::array<float, kPartSide * kPartSide> ratio;  // the part's radiosity over the leaf's mean
+  };
+  const SourceParts* parts(uint32_t node) const {
+    return node < part_slot_.size() && part_slot_[node] >= 0 ? &parts_[size_t(part_slot_[node])] : nullptr;
+  }
+
  private:
   const Hierarchy& h_;
   bool indirect_;
@@ -50,6 +68,8 @@ class ClusterGather {
   std::vector<Vec3> H_, Hg_;
   std::vector<double> row_;
   std::vector<Vec3> emitted_;  // per node: its emission as sent (emitted_as_sent)
+  std::vector<int32_t> part_slot_;  // per node: its SourceParts, or -1
+  std::vector<SourceParts> parts_;
 };
 
 // The solution over one leaf: what does not depend on the point (per quadrant of the leaf) gathered
@@ -65,6 +85,10 @@ class LeafRadiosity {
   Vec3 at(const Vec3& x, bool gathered = false) const;
 
  private:
+  // A source's unoccluded form factor from x and what it brings there (sent × F), part by part where
+  // the source is a close leaf with resolved parts (ClusterGather::resolve_close_sources).
+  void source_at(uint32_t node, const Vec3& x, const Vec3& normal, const Vec3& sent, Vec3& H, double& f) const;
+
   // Σ over a near source's parts down to where the point is no longer close to them: each part's
   // point form factor to x and what it sends (ClusterGather::sent), added to H and f.
   void near_parts(uint32_t node, const Vec3& x, const Vec3& normal, bool gathered, Vec3& H, double& f) const;
