@@ -33,11 +33,10 @@ bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && leng
 
 // A leaf element source is resolved into parts for a seen leaf at most this fraction of its size (its
 // points see parts of it: test ContactShadow's floor beside the box, 1.6 cm leaves, and the box's
-// 7.5 cm faces). Beside the box 0.3, 0.5, 1 and any size gave the same error; on the Cornell box 329
-// sources resolved in 0.13 s at 0.5, 1,622 in 0.61 s at 1. A source is taken whole where its parts
-// all lie within kFlatParts of its mean.
+// 7.5 cm faces). Beside the box 0.3, 0.5, 1 and any size gave the same error; on the Cornell box 0.5
+// resolves 329 sources, 1 resolves 1,622 (0.26 s against 0.61 s, before the marking pass kept its
+// stack; 0.13 s at 0.5 since).
 constexpr double kFinerReceiver = 0.5;
-constexpr float kFlatParts = 0.02f;
 
 // Whether a leaf element source is close enough to x for its resolved parts (ClusterGather::
 // resolve_close_sources) to be taken one by one.
@@ -138,7 +137,6 @@ void ClusterGather::resolve_close_sources(const std::vector<uint32_t>& leaves) {
   });
   part_slot_.assign(count, -1);
   for (size_t k = 0; k < sources.size(); ++k) part_slot_[sources[k]] = int32_t(k);
-
   parts_ = std::move(parts);
 }
 
@@ -242,47 +240,36 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   for (const Near& s : near_) {
     if (!gathered && !s.close) continue;
     const HNode& src = h_[s.source];
-    double f = 0;
     const Vec3 d = src.center - x;
     const double r2 = dot(d, d);
     if (!s.close && r2 > kFar * kFar * src.radius * src.radius) {
       // Far: a disc of the source's area, exact on its axis, many times cheaper than the contour.
       const double r = std::sqrt(r2);
-      f = src.area * std::max(0.0, dot(d, n.normal) / r) * std::max(0.0, -dot(d, src.normal) / r) / (kPi * r2 + src.area) *
-          s.visible;
-    } else if (dot(x - src.shape.v[0], src.normal) > 0) {
-      // Near: the source's parts that are near the point by their own form factors and radiosity
-      // (the kernel varies over them: the Cornell box's block face towards the camera sees the floor
-      // at its foot most: 4.9% → 3.3% off).
-      if (by_parts(src, x)) {
-        Vec3 Hs;
-        double fs = 0;
-        near_parts(s.source, x, n.normal, gathered, Hs, fs);
-        (s.visible > kWhole ? H_open : H) += Hs * s.visible;
-        (s.visible > kWhole ? f_open : row) += fs * s.visible;
-        continue;
-      }
-      Vec3 Hs;
-      double fs = 0;
-      source_at(s.source, x, n.normal, gathered ? s.reflected : s.sent, Hs, fs);
-      (s.visible > kWhole ? H_open : H) += Hs * s.visible;
-      (s.visible > kWhole ? f_open : row) += fs * s.visible;
+      const double f = src.area * std::max(0.0, dot(d, n.normal) / r) * std::max(0.0, -dot(d, src.normal) / r) /
+                       (kPi * r2 + src.area) * s.visible;
+      (s.visible > kWhole ? H_open : H) += (gathered ? s.reflected : s.sent) * f;
+      (s.visible > kWhole ? f_open : row) += f;
       continue;
     }
-    (s.visible > kWhole ? H_open : H) += (gathered ? s.reflected : s.sent) * f;
-    (s.visible > kWhole ? f_open : row) += f;
+    if (dot(x - src.shape.v[0], src.normal) <= 0) continue;  // behind the source
+    // Near: the source's parts that are near the point by their own form factors and radiosity
+    // (the kernel varies over them: the Cornell box's block face towards the camera sees the floor
+    // at its foot most: 4.9% → 3.3% off).
+    Vec3 Hs;
+    double fs = 0;
+    if (by_parts(src, x)) near_parts(s.source, x, n.normal, gathered, Hs, fs);
+    else source_at(s.source, x, n.normal, gathered ? s.reflected : s.sent, Hs, fs);
+    (s.visible > kWhole ? H_open : H) += Hs * s.visible;
+    (s.visible > kWhole ? f_open : row) += fs * s.visible;
   }
-  if (gathered && n.balanced && f_open < 1 && f_open + row > 1 && scalable_row(f_open + row)) {
+  if (gathered && n.balanced && row > 0 && f_open + row > 1 && scalable_row(f_open < 1 ? f_open + row : f_open)) {
     // A closed scene's row overfilled at the point: the links' visibility is their leaf's mean, and a
     // point where an occluder hides part of the sources (the table under lamp-room's shade, whose row
     // summed to 1.4) counts the occluder and what it hides. The excess is taken from the sources seen
     // in part, whose visibility the point does not know; those seen whole are exact here (the shade).
-    return n.emission + mul(n.rho, H_open + H * ((1 - f_open) / row));
-  }
-  if (gathered && n.balanced && f_open >= 1 && row > 0 && scalable_row(f_open)) {
-    // The sources seen whole fill the hemisphere by themselves: those seen in part are hidden here
-    // (beside a box, the walls behind it that its leaf's ancestors half saw: 10% bright).
-    return n.emission + mul(n.rho, H_open / f_open);
+    // Where those alone fill the hemisphere, the others are hidden (beside a box, the walls behind it
+    // that its leaf's ancestors half saw: 10% bright), and those are divided by their own row.
+    return n.emission + mul(n.rho, H_open / std::max(1.0, f_open) + H * (std::max(0.0, 1 - f_open) / row));
   }
   H += H_open;
   row += f_open;

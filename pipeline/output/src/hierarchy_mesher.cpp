@@ -50,19 +50,19 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
       return (!point.seen || (*point.seen)[p]) && !transmitting(p);
     };
     candidates.resize(faces.size());
+    std::vector<uint8_t> seen_face(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) seen_face[f] = seen(f);
     tbb::parallel_for(size_t(0), faces.size(), [&](size_t f) {
-      if (seen(f)) candidates[f] = direct->candidates(leaf[f]);
+      if (seen_face[f]) candidates[f] = direct->candidates(leaf[f]);
     });
     // The seen leaves' close sources taken part by part (ClusterGather::resolve_close_sources).
     std::vector<uint32_t> seen_leaves;
     for (size_t f = 0; f < faces.size(); ++f)
-      if (seen(f)) seen_leaves.push_back(leaf[f]);
+      if (seen_face[f]) seen_leaves.push_back(leaf[f]);
     clusters.resolve_close_sources(seen_leaves);
     // Discontinuity meshing (discontinuity_mesh.h): the seen faces cut along the shadow boundaries of
     // their emitters, within as many expected crossings as an eighth of the faces (at least 1,024).
     if (point.discontinuities && direct->emitter_count()) {
-      std::vector<uint8_t> seen_face(faces.size());
-      for (size_t f = 0; f < faces.size(); ++f) seen_face[f] = seen(f);
       BoundarySelection chosen =
           select_boundaries(h, *direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024), point.rays);
       if (point.counts) {
@@ -74,7 +74,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
       // segments a cover, wherever the walkthrough sees the polygon under it.
       std::vector<uint8_t> seen_polygon(h.scene().polygons.size(), 0);
       for (size_t f = 0; f < faces.size(); ++f) seen_polygon[faces[f].polygon] |= seen_face[f];
-      const std::vector<std::vector<ContactBand>> bands = contact_bands(h.scene(), seen_polygon);
+      const std::vector<std::vector<ContactBand>> bands = contact_bands(h.scene(), h.tree(), seen_polygon);
       uint64_t banded = 0;
       for (size_t p = 0; p < bands.size(); ++p)
         for (const ContactBand& b : bands[p]) {

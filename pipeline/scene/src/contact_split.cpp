@@ -54,11 +54,12 @@ void contact_cuts(const Polygon& q, const Vec3& qn, const Polygon& p, double tol
 // seen by nothing; its corners must not be averaged with the lit ones around it.
 constexpr double kCoverGap = 0.02;
 
-// p's corners projected on q's plane, when p covers q (else empty).
-Loop cover_footprint(const Polygon& q, const Vec3& qn, const Polygon& p, double tol) {
+// p's corners projected on q's plane, when p covers q (else empty); gap: p's height over q.
+Loop cover_footprint(const Polygon& q, const Vec3& qn, const Polygon& p, double tol, double* gap_out = nullptr) {
   const Vec3 pn = polygon_normal(p);
   if (std::fabs(dot(pn, qn)) < 1 - 1e-6) return {};
   const double gap = dot(p.v[0] - q.v[0], qn);
+  if (gap_out) *gap_out = gap;
   const double size = std::sqrt(std::min(polygon_area(p), polygon_area(q)));
   if (gap <= tol || gap > kCoverGap * size) return {};
   Loop out;
@@ -210,10 +211,10 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
   return out;
 }
 
-std::vector<std::vector<ContactBand>> contact_bands(const Scene& scene, const std::vector<uint8_t>& wanted, double tolerance) {
+std::vector<std::vector<ContactBand>> contact_bands(const Scene& scene, const ClusterTree& tree, const std::vector<uint8_t>& wanted,
+                                                    double tolerance) {
   std::vector<std::vector<ContactBand>> out(scene.polygons.size());
   const double tol = tolerance > 0 ? tolerance : 1e-6 * length(scene.bounds().diagonal());
-  const ClusterTree tree = build_cluster_tree(scene);
   std::vector<int32_t> stack;
   std::vector<Loop> covers;
   std::vector<double> gaps;
@@ -224,10 +225,11 @@ std::vector<std::vector<ContactBand>> contact_bands(const Scene& scene, const st
     covers.clear();
     gaps.clear();
     for_each_near(tree, scene, qi, reach_of(q, tol), stack, [&](const Polygon& p) {
-      Loop footprint = cover_footprint(q, qn, p, tol);
+      double gap = 0;
+      Loop footprint = cover_footprint(q, qn, p, tol, &gap);
       if (footprint.empty()) return;
       covers.push_back(std::move(footprint));
-      gaps.push_back(dot(p.v[0] - q.v[0], qn));
+      gaps.push_back(gap);
     });
     for (size_t c = 0; c < covers.size(); ++c) {
       const Loop& footprint = covers[c];

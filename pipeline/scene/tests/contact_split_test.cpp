@@ -27,7 +27,7 @@ TEST(ContactBands, GrownFootprintOnTheCoveredPolygonsPieces) {
   const Scene split = split_contacts(box_over_floor(gap), stats);
   ASSERT_GT(stats.covered, 0u);
   std::vector<uint8_t> wanted(split.polygons.size(), 1);
-  const auto bands = contact_bands(split, wanted);
+  const auto bands = contact_bands(split, build_cluster_tree(split), wanted);
   ASSERT_EQ(bands.size(), split.polygons.size());
   // Every segment lies on the floor, on the outline of [2.3 − w, 2.9 + w] × [1.7 − w, 2.3 + w], and
   // inside the piece it was found for; together they cover that outline's length once.
@@ -65,13 +65,13 @@ TEST(ContactBands, NoneWhereNothingCovers) {
   for (const double gap : {0.0, 0.05}) {  // resting on the floor; farther than a cover's gap (2% of 0.6 m)
     ContactSplitStats stats;
     const Scene split = split_contacts(box_over_floor(gap), stats);
-    const auto bands = contact_bands(split, std::vector<uint8_t>(split.polygons.size(), 1));
+    const auto bands = contact_bands(split, build_cluster_tree(split), std::vector<uint8_t>(split.polygons.size(), 1));
     for (const auto& b : bands) EXPECT_TRUE(b.empty()) << "gap " << gap;
   }
   // Nor on polygons not asked for.
   ContactSplitStats stats;
   const Scene split = split_contacts(box_over_floor(0.002), stats);
-  for (const auto& b : contact_bands(split, std::vector<uint8_t>(split.polygons.size(), 0))) EXPECT_TRUE(b.empty());
+  for (const auto& b : contact_bands(split, build_cluster_tree(split), std::vector<uint8_t>(split.polygons.size(), 0))) EXPECT_TRUE(b.empty());
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ class ClusterGather {
   // Near-contact sources: a leaf element sends one mean, but a point a fraction of its size away sees
   // mostly its nearest part (a floor point 1 cm from a box sees the first centimetres of the box's face,
   // which its bottom element, 7.5 cm tall, averages with brighter ones above). For every leaf element
-  // that is a close source (within kPartRadii of its radius) of one of `leaves`' links, its
+  // that is a close source (its centre within 2 of its radii, plus the leaf's, of the leaf's centre) of
+  // one of `leaves`' links or under such a source, and at least twice the leaf's size, its
   // kPartSide² parts and how their radiosity, evaluated at their centres (LeafRadiosity::at, without
   // these parts), departs from the leaf's mean: LeafRadiosity then takes such a source part by part.
   // In parallel over the sources; the result depends on no thread count.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "walkrad/formats/scene.h"
+#include "walkrad/scene/cluster_tree.h"
 
 namespace walkrad {
 
@@ -42,6 +43,8 @@ constexpr double kContactBand = 4.0;
 struct ContactBand {
   Vec3 a, b;
 };
-std::vector<std::vector<ContactBand>> contact_bands(const Scene& scene, const std::vector<uint8_t>& wanted, double tolerance = 0);
+// tree: build_cluster_tree(scene), as the bake already holds it (Hierarchy::tree).
+std::vector<std::vector<ContactBand>> contact_bands(const Scene& scene, const ClusterTree& tree, const std::vector<uint8_t>& wanted,
+                                                    double tolerance = 0);
 
 }  // namespace walkrad
