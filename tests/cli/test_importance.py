@@ -19,7 +19,7 @@ walkrad, source, work = sys.argv[1:4]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 subprocess.run([sys.executable, os.path.join(source, "examples/office-floor/make_office_floor.py"), "--rooms", "4",
-                "--detail", "0.25", "--out", work], check=True, stdout=subprocess.DEVNULL)
+                "--detail", "0.05", "--out", work], check=True, stdout=subprocess.DEVNULL)
 bake = os.path.join(work, "bake")
 subprocess.run([walkrad, "bake", os.path.join(work, "office-floor-4.glb"), "--views",
                 os.path.join(work, "office-floor-4-walkthrough.json"), "-o", bake, "-q", "--quality", "draft"],

@@ -40,8 +40,7 @@ class CornellBake : public ::testing::Test {
     // One folder per process: ctest runs each test in its own process, possibly at the same time.
     dir_ = fs::path(testing::TempDir()) / ("walkrad-cornell-" + std::to_string(::getpid()));
     fs::remove_all(dir_);
-    bake(coarse((dir_ / "t1").string(), 1));
-    bake(coarse((dir_ / "t2").string(), 2));
+    bake(coarse((dir_ / "t2").string(), 2));  // the one-thread bake only where a test compares with it
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
   static fs::path dir_;
@@ -86,6 +85,7 @@ TEST_F(CornellBake, ColourBleedsFromTheWallsOntoTheFloor) {
 }
 
 TEST_F(CornellBake, SameResultWithOneAndTwoThreads) {
+  bake(coarse((dir_ / "t1").string(), 1));
   EXPECT_EQ(read_bytes((dir_ / "t1/manifest.json").string()), read_bytes((dir_ / "t2/manifest.json").string()));
   for (const ChunkInfo& c : read_manifest((dir_ / "t1/manifest.json").string()).chunks)
     EXPECT_EQ(read_bytes((dir_ / "t1" / c.file).string()), read_bytes((dir_ / "t2" / c.file).string())) << c.file;

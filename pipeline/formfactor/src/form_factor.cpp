@@ -46,7 +46,30 @@ GaussRule gauss_rule(int order) {
   return r;
 }
 
+// atan(t) for |t| <= 0.66: t + t·z·P(z)/Q(z), z = t², the rational approximation of Cephes' atan
+// (S. L. Moshier, "Methods and Programs for Mathematical Functions", 1989), within 2.2e-16 relative.
+double atan_core(double t) {
+  const double z = t * t;
+  const double p = (((-8.750608600031904122785e-1 * z - 1.615753718733365076637e1) * z - 7.500855792314704667340e1) * z -
+                    1.228866684490136173410e2) * z - 6.485021904942025371773e1;
+  const double q = ((((z + 2.485846490142306297962e1) * z + 1.650270098316988542046e2) * z + 4.328810604912902668951e2) * z +
+                    4.853903996359136964868e2) * z + 1.945506571482613964425e2;
+  return t + t * (z * p / q);
+}
+
+// Inlined into the contour formula's loop; vector_angle is the same for callers elsewhere.
+inline double angle_of(double s, double c) {
+  const double a = std::fabs(c);
+  double angle;
+  if (s > 2.414213562373095 * a) angle = 0.5 * kPi - atan_core(a / s);         // beyond 3π/8
+  else if (s > 0.66 * a) angle = 0.25 * kPi + atan_core((s - a) / (s + a));  // π/4 ± π/8
+  else angle = a > 0 ? atan_core(s / a) : 0.0;  // two zero vectors: 0, not NaN
+  return c < 0 ? kPi - angle : angle;
+}
+
 }  // namespace
+
+double vector_angle(double s, double c) { return angle_of(s, c); }
 
 ClippedPolygon clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, int count) {
   // Sutherland-Hodgman against one plane.
@@ -70,15 +93,34 @@ double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) {
   const double pl = length(pn);
   if (std::fabs(plane_distance) <= pl * (1e-12 * std::sqrt(pl) + rounding_at(p))) return 0.0;
 
-  const ClippedPolygon v = clip_to_hemisphere(p, n, poly.v.data(), poly.count);
-  if (v.count < 3) return 0.0;
+  // The corners relative to p, as plain doubles (a Vec3 array would be zeroed on every call): the
+  // polygon's own when it lies wholly above p's horizon, the clipped polygon's otherwise.
+  const int count = std::min(int(poly.count), 4);
+  bool above = true;
+  for (int k = 0; k < count; ++k) above = above && dot(poly.v[size_t(k)] - p, n) >= 0;
+  double rx[8], ry[8], rz[8];
+  int m = 0;
+  if (above) {
+    for (; m < count; ++m) {
+      const Vec3 r = poly.v[size_t(m)] - p;
+      rx[m] = r.x, ry[m] = r.y, rz[m] = r.z;
+    }
+  } else {
+    const ClippedPolygon v = clip_to_hemisphere(p, n, poly.v.data(), poly.count);
+    for (; m < v.count; ++m) {
+      const Vec3 r = v.v[size_t(m)] - p;
+      rx[m] = r.x, ry[m] = r.y, rz[m] = r.z;
+    }
+  }
+  if (m < 3) return 0.0;
   double sum = 0.0;
-  for (int k = 0; k < v.count; ++k) {
-    const Vec3 r0 = v.v[size_t(k)] - p, r1 = v.v[size_t((k + 1) % v.count)] - p;
+  for (int k = 0; k < m; ++k) {
+    const int j = k + 1 == m ? 0 : k + 1;
+    const Vec3 r0{rx[k], ry[k], rz[k]}, r1{rx[j], ry[j], rz[j]};
     const Vec3 c = cross(r0, r1);
     const double cl = length(c);
     if (cl <= 0) continue;  // p on the edge's line: the edge subtends no angle
-    const double beta = std::atan2(cl, dot(r0, r1));
+    const double beta = angle_of(cl, dot(r0, r1));
     sum += beta * dot(n, c) / cl;
   }
   // The sign of the sum follows the winding seen from p; the form factor is its magnitude.

@@ -19,6 +19,13 @@ namespace walkrad {
 // polygon's plane, or a polygon entirely below the point's horizon, gets 0 (never NaN).
 double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly);
 
+// The angle between two vectors a and b from s = |a × b| >= 0 and c = a·b: atan2(s, c) in [0, π], by the
+// rational approximation of Cephes' atan (S. L. Moshier, "Methods and Programs for Mathematical
+// Functions", 1989) after reduction to |t| <= 0.66, within 2.2e-16 relative of atan2, one division.
+// libm's atan2 rounds correctly and saves and restores the rounding mode on every call: it was a sixth
+// of a bake's time (the contour formula runs millions of times at the gathered vertices).
+double vector_angle(double s, double c);
+
 // Clips a polygon of at most 4 corners to the half-space dot(x - p, n) >= 0: its corners (possibly
 // none), on the stack (the contour formula runs millions of times in a bake). Each edge keeps at most
 // its start and one crossing: 8 corners at most, 5 for a convex polygon.
