@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, builds (Release), runs every test with ctest, then
-# the readers' tests and fuzz replays under the sanitizers (build-asan/).
+# the readers' tests and fuzz replays under the sanitizers (build-asan-readers/).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$here/scripts/install-deps.sh"
