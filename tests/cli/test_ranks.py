@@ -28,9 +28,11 @@ subprocess.run([sys.executable, os.path.join(source, "examples/office-floor/make
 # Its path sampled at 60 viewpoints, not 240: the same rooms looked at, a quarter of the chunk
 # visibility rays (a CI budget; what is divided among ranks is the same).
 path_file = os.path.join(office, "office-floor-1-walkthrough.json")
-walk = json.load(open(path_file))
+with open(path_file) as f:
+    walk = json.load(f)
 walk["path"]["frames"] = 60
-json.dump(walk, open(path_file, "w"))
+with open(path_file, "w") as f:
+    json.dump(walk, f)
 # Each scene: (the folder the bakes run in, the arguments relative to it). The office level's 2-rank bake
 # runs its rank 1 in an empty folder, where the scene's and the walkthrough's relative paths lead nowhere
 # (another host): rank 0 reads the files and sends what it read.

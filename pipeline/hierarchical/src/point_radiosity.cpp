@@ -28,8 +28,10 @@ constexpr double kPart = 2.0;
 // A link's visible fraction above this saw its source whole (F and F_open agree to float rounding).
 constexpr double kWhole = 0.999;
 
-// Whether a point is close enough to a split element for its parts to be taken one by one.
-bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && length(s.center - x) < kPart * s.radius; }
+// Whether a point is close enough to a source for its parts (its children, or a leaf's resolved parts:
+// ClusterGather::resolve_close_sources) to be taken one by one.
+bool within_parts(const HNode& s, const Vec3& x) { return length(s.center - x) < kPart * s.radius; }
+bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && within_parts(s, x); }
 
 // A leaf element source is resolved into parts for a seen leaf at most this fraction of its size (its
 // points see parts of it: test ContactShadow's floor beside the box, 1.6 cm leaves, and the box's
@@ -37,10 +39,6 @@ bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && leng
 // resolves 329 sources, 1 resolves 1,622 (0.26 s against 0.61 s, before the marking pass kept its
 // stack; 0.13 s at 0.5 since).
 constexpr double kFinerReceiver = 0.5;
-
-// Whether a leaf element source is close enough to x for its resolved parts (ClusterGather::
-// resolve_close_sources) to be taken one by one.
-bool close_leaf(const HNode& s, const Vec3& x) { return s.child_count == 0 && !s.cluster && length(s.center - x) < kPart * s.radius; }
 
 }  // namespace
 
@@ -88,9 +86,11 @@ Vec3 ClusterGather::sent(const Link& l, bool gathered) const {
 void ClusterGather::resolve_close_sources(const std::vector<uint32_t>& leaves) {
   const size_t count = h_.nodes().size();
   // The close leaf sources of the leaves' links (their own and their ancestors').
-  std::vector<uint8_t> close(count, 0);
+  std::vector<uint8_t> close(count, 0), done(count, 0);
   std::vector<uint32_t> stack;
   for (const uint32_t leaf : leaves) {
+    if (done[leaf]) continue;  // a leaf with several faces is listed once a face
+    done[leaf] = 1;
     const HNode& n = h_[leaf];
     for (int32_t a = int32_t(leaf); a >= 0 && !h_[uint32_t(a)].cluster; a = h_[uint32_t(a)].parent)
       for (const Link& l : h_[uint32_t(a)].links) {
@@ -142,7 +142,10 @@ void ClusterGather::resolve_close_sources(const std::vector<uint32_t>& leaves) {
 
 void LeafRadiosity::source_at(uint32_t node, const Vec3& x, const Vec3& normal, const Vec3& sent, Vec3& H, double& f) const {
   const HNode& s = h_[node];
-  const ClusterGather::SourceParts* parts = close_leaf(s, x) ? clusters_.parts(node) : nullptr;
+  // Only resolved leaves have parts: the lookup first, the distance only for them (this runs for every
+  // near source of every gathered point).
+  const ClusterGather::SourceParts* parts = clusters_.parts(node);
+  if (parts && !within_parts(s, x)) parts = nullptr;
   if (!parts) {
     const double ff = point_to_polygon(x, normal, s.shape);
     H += sent * ff;
