@@ -179,10 +179,12 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   point.position_error = s.position_tolerance;
   // The adaptive output mesh (final_gather.h): gathered leaves split where Gouraud shading would miss
   // a shadow's edge, the worst first, within an eighth as many new leaves as the solution has, at
-  // least 4,096. A 5 cm penumbra went from 13% to 4.2% off, and to 2.4% with 32² points per penumbra
-  // vertex (test ContactShadow); on the Cornell box's and office-floor's sample points it changes
-  // little (1.02% against 1.01% without, for 1.43× the triangles; docs/accuracy.md). Half as many
-  // leaves as the solution: office-floor took 84 s of CPU, not 75.
+  // least 2,048. A 5 cm penumbra went from 13% to 4.2% off, and to 2.4% with 32² points per penumbra
+  // vertex (test ContactShadow). Since the discontinuity cuts put penumbrae's edges on element edges
+  // the floor buys less: 2,048 against 4,096 gave that penumbra 0.96% against 0.88% (lit floor 0.70%),
+  // the Cornell box 0.870% both, lamp-room 1.291% against 1.288%, for 1.41× the chunk bytes of a bake
+  // without the gather instead of 1.63× and 1.73× (issue 23 allows 1.5×; docs/accuracy.md). Half as
+  // many leaves as the solution: office-floor took 84 s of CPU, not 75.
   GatherRefinement refinement;
   refinement.seen = hs.gathered;
   refinement.twins = hs.twins;
@@ -190,7 +192,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   refinement.white = stats.white;
   refinement.min_area = stats.min_area / 64;  // three levels below the solution's finest: a penumbra is narrow
   refinement.max_depth = hs.max_depth;
-  refinement.budget = std::max<uint64_t>(h->element_count() / 8, 4096);
+  refinement.budget = std::max<uint64_t>(h->element_count() / 8, 2048);
   const auto* lights = hs.lights;
   const RayScene* occluders = plan.visibility.on ? &rays : nullptr;
   r.mesh = [h, point, seen, refinement, lights, occluders, &phases](double exposure, json& counts) {
