@@ -1,8 +1,11 @@
-// Near-contact bands (contact_split.h): beside a cover's footprint, the outline grown by kContactBand
-// gaps, on the pieces of the covered polygon around it, and nowhere else.
+// Contact splitting's smoothing groups and near-contact bands (contact_split.h): a piece under a
+// cover or enclosed by what stands on it gets its own material; bands beside a cover's footprint, the
+// outline grown by kContactBand gaps, on the pieces of the covered polygon around it, and nowhere else.
 #include "walkrad/scene/contact_split.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +75,58 @@ TEST(ContactBands, NoneWhereNothingCovers) {
   ContactSplitStats stats;
   const Scene split = split_contacts(box_over_floor(0.002), stats);
   for (const auto& b : contact_bands(split, build_cluster_tree(split), std::vector<uint8_t>(split.polygons.size(), 0))) EXPECT_TRUE(b.empty());
+}
+
+// Whether a floor piece (of a split scene) took the covered copy of its material.
+bool covered(const Scene& split, const Polygon& piece) {
+  return split.materials[piece.material].name.find("(covered)") != std::string::npos;
+}
+
+TEST(ContactSplit, PieceEnclosedByWhatStandsOnItTakesItsOwnMaterial) {
+  // A box with no bottom face resting on the floor (a book on a shelf board): the floor under it is
+  // enclosed by the four sides' backs; the floor around it faces their fronts.
+  Scene s = box_over_floor(0.0);
+  s.polygons.erase(std::remove_if(s.polygons.begin() + 1, s.polygons.end(),
+                                  [](const Polygon& p) { return polygon_normal(p).y < -0.5; }),
+                   s.polygons.end());
+  ASSERT_EQ(s.polygons.size(), 6u);
+  ContactSplitStats stats;
+  const Scene split = split_contacts(s, stats);
+  size_t under = 0, around = 0;
+  for (const Polygon& q : split.polygons) {
+    if (std::fabs(polygon_normal(q).y - 1) > 1e-9 || std::fabs(q.v[0].y) > 1e-12) continue;  // not the floor
+    const Vec3 c = polygon_centroid(q);
+    const bool inside = c.x > 2.3 && c.x < 2.9 && c.z > 1.7 && c.z < 2.3;
+    EXPECT_EQ(covered(split, q), inside) << c.x << " " << c.z;
+    (inside ? under : around) += 1;
+  }
+  EXPECT_EQ(under, 1u);
+  EXPECT_EQ(around, 8u);  // the floor cut by the four sides' lines: 3 × 3 pieces
+  EXPECT_EQ(stats.covered, 1u);
+}
+
+TEST(ContactSplit, NothingEnclosedWhereWhatStandsFacesBothWays) {
+  // A wall across the floor as two one-sided quads back to back (x = 2, facing −x and +x): each side
+  // of the floor is in front of one of them, so neither is enclosed. One quad alone leaves its back's
+  // side enclosed (nothing there faces it).
+  Scene s;
+  s.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
+  s.polygons.push_back(test::quad({0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0}));  // faces +y
+  Polygon wall = test::quad({2, 0, 0}, {2, 2, 0}, {2, 2, 4}, {2, 0, 4});
+  if (polygon_normal(wall).x > 0) std::swap(wall.v[1], wall.v[3]);  // faces −x
+  s.polygons.push_back(wall);
+  Polygon back = wall;
+  std::swap(back.v[1], back.v[3]);  // faces +x
+  s.polygons.push_back(back);
+  ContactSplitStats stats;
+  const Scene both = split_contacts(s, stats);
+  EXPECT_EQ(stats.covered, 0u);
+  s.polygons.pop_back();
+  ContactSplitStats one;
+  const Scene single = split_contacts(s, one);
+  EXPECT_EQ(one.covered, 1u);
+  for (const Polygon& q : single.polygons)
+    if (std::fabs(polygon_normal(q).y - 1) < 1e-9) EXPECT_EQ(covered(single, q), polygon_centroid(q).x > 2) << polygon_centroid(q).x;
 }
 
 }  // namespace
