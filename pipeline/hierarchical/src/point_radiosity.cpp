@@ -224,6 +224,19 @@ void LeafRadiosity::near_parts(uint32_t node, const Vec3& x, const Vec3& normal,
   source_at(node, x, normal, clusters_.sent(node, gathered), H, f);  // the parts' form factors sum to the source's
 }
 
+// Whether a gathered point sees a source its link saw in part: one ray to the source's centre. The
+// link's visible fraction is its leaf's mean; beside an occluder the point's own view differs (the
+// Cornell box's floor 1-3 cm in front of the short block, in its shadow, was 25-60% bright: the walls
+// the block hides there were taken at the leaf's visibility). One ray against four to the source's
+// quadrants: the Cornell box 0.744% against 0.714% weighted RMS, for 1.08x and 1.31x its CPU.
+double LeafRadiosity::visible_at(const Near& s, const Vec3& x) const {
+  const RayScene* rays = clusters_.rays();
+  if (!rays || s.visible <= 0 || s.visible > kWhole) return s.visible;
+  const HNode& src = h_[s.source];
+  const Vec3 from = x + h_[leaf_].normal * rays->offset();
+  return rays->occluded(from, polygon_centroid(src.shape) + src.normal * rays->offset()) ? 0.0 : 1.0;
+}
+
 Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   const HNode& n = h_[leaf_];
   if (flat_) {
@@ -249,7 +262,7 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
       // Far: a disc of the source's area, exact on its axis, many times cheaper than the contour.
       const double r = std::sqrt(r2);
       const double f = src.area * std::max(0.0, dot(d, n.normal) / r) * std::max(0.0, -dot(d, src.normal) / r) /
-                       (kPi * r2 + src.area) * s.visible;
+                       (kPi * r2 + src.area) * (gathered ? visible_at(s, x) : s.visible);
       (s.visible > kWhole ? H_open : H) += (gathered ? s.reflected : s.sent) * f;
       (s.visible > kWhole ? f_open : row) += f;
       continue;
@@ -262,8 +275,9 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
     double fs = 0;
     if (by_parts(src, x)) near_parts(s.source, x, n.normal, gathered, Hs, fs);
     else source_at(s.source, x, n.normal, gathered ? s.reflected : s.sent, Hs, fs);
-    (s.visible > kWhole ? H_open : H) += Hs * s.visible;
-    (s.visible > kWhole ? f_open : row) += fs * s.visible;
+    const double v = gathered ? visible_at(s, x) : s.visible;
+    (s.visible > kWhole ? H_open : H) += Hs * v;
+    (s.visible > kWhole ? f_open : row) += fs * v;
   }
   if (gathered && n.balanced && row > 0 && f_open + row > 1 && scalable_row(f_open < 1 ? f_open + row : f_open)) {
     // A closed scene's row overfilled at the point: the links' visibility is their leaf's mean, and a

@@ -9,7 +9,8 @@
 // For a vertex of the final gather (final_gather.h) the direct light is evaluated at the point apart:
 // there the sources send only what they reflect (Bt less their emission as sent) and punctual lights
 // are left out, B(x) = E + ρ H_indirect(x), and the gather adds ρ D(x); and every element source, near
-// or far, takes the point's own form factor (times the fraction of it the link sees).
+// or far, takes the point's own form factor times the fraction of it the link sees, or, where the link
+// saw it in part, whether the point sees its centre (one ray: visibility at the point, not the leaf's).
 #pragma once
 
 #include <array>
@@ -100,6 +101,8 @@ class LeafRadiosity {
     bool close;      // near enough for the point's form factor at every vertex (else at gathered ones only)
     Vec3 sent, reflected;  // what the link takes from the source (ClusterGather::sent)
   };
+  // At a gathered point: whether it sees a source its link saw in part (else the link's fraction).
+  double visible_at(const Near& s, const Vec3& x) const;
   const ClusterGather& clusters_;
   const Hierarchy& h_;
   uint32_t leaf_;
