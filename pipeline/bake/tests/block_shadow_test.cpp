@@ -4,7 +4,6 @@
 // the block hides half of that: a vertex that took the walls behind the block at what its leaf's links
 // saw of them over the whole leaf came out 25-60% bright. A gathered vertex asks again whether it sees
 // a source its link saw in part (point_radiosity.h): within 10% RMS (measured 5.2%; 25.1% without).
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -43,15 +42,7 @@ TEST(BlockShadow, FloorInFrontOfTheShortBlockAgreesWithTheReference) {
   // (cornell-box.md, in metres); out of it, towards the camera, is −z.
   const Vec3 a(0.13, 0, 0.065), b(0.29, 0, 0.114);
   const Vec3 along = normalize(b - a), out = normalize(Vec3(along.z, 0, -along.x));
-  uint32_t floor = UINT32_MAX;
-  for (uint32_t k = 0; k < scene.polygons.size() && floor == UINT32_MAX; ++k) {
-    const Polygon& p = scene.polygons[k];
-    const Vec3 n = polygon_normal(p), x = a + out * 0.02;
-    bool inside = n.y > 0.999 && std::fabs(dot(x - p.v[0], n)) < 1e-4;
-    for (int e = 0; e < p.count && inside; ++e) inside = dot(cross(p.v[(e + 1) % p.count] - p.v[e], x - p.v[e]), n) >= 0;
-    if (inside) floor = k;
-  }
-  ASSERT_NE(floor, UINT32_MAX) << "no floor polygon in front of the block";
+  const uint32_t floor = test::polygon_at(scene, "white", {0, 1, 0}, a + out * 0.02);
   std::vector<SurfacePoint> at;
   std::vector<Vec3> up;
   for (const double t : {0.3, 0.5, 0.7, 0.9})

@@ -29,18 +29,6 @@ namespace fs = std::filesystem;
 
 const std::string kLampRoom = std::string(WALKRAD_SOURCE_DIR) + "/examples/lamp-room/lamp-room.gltf";
 
-// The input polygon of the given material facing `normal` whose plane holds `point`.
-uint32_t polygon_at(const Scene& s, const std::string& material, const Vec3& normal, const Vec3& point) {
-  for (uint32_t k = 0; k < s.polygons.size(); ++k) {
-    const Polygon& p = s.polygons[k];
-    if (s.materials[p.material].name == material && dot(polygon_normal(p), normal) > 0.999 &&
-        std::fabs(dot(point - p.v[0], normal)) < 1e-6)
-      return k;
-  }
-  ADD_FAILURE() << "no " << material << " polygon there";
-  return 0;
-}
-
 TEST(LampShade, OutsideShowsTheBulbThroughIt) {
   const fs::path dir = fs::path(testing::TempDir()) / ("walkrad-lamp-shade-" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -61,9 +49,9 @@ TEST(LampShade, OutsideShowsTheBulbThroughIt) {
     Vec3 normal;
   };
   std::vector<Probe> probes;
-  const uint32_t east = polygon_at(scene, "shade", {1, 0, 0}, {2.3, 2.0, 1.05});
-  const uint32_t north = polygon_at(scene, "shade", {0, 1, 0}, {2.1, 2.2, 1.05});
-  const uint32_t table = polygon_at(scene, "table", {0, 0, 1}, {2.0, 2.0, 0.75});
+  const uint32_t east = test::polygon_at(scene, "shade", {1, 0, 0}, {2.3, 2.0, 1.05});
+  const uint32_t north = test::polygon_at(scene, "shade", {0, 1, 0}, {2.1, 2.2, 1.05});
+  const uint32_t table = test::polygon_at(scene, "table", {0, 0, 1}, {2.0, 2.0, 0.75});
   for (const double u : {0.03, 0.12, 0.2, 0.28, 0.37})
     for (const double z : {0.88, 1.0, 1.1, 1.22}) {
       probes.push_back({{east, {2.3, 1.8 + u, z}}, {1, 0, 0}});

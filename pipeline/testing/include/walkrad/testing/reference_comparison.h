@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -13,6 +14,23 @@
 #include "walkrad/accuracy/reference_tracer.h"
 
 namespace walkrad::test {
+
+// The input polygon of `material` facing `normal` (unit) whose plane holds `point`, inside it: where
+// the reference tracer is asked about that point.
+inline uint32_t polygon_at(const Scene& s, const std::string& material, const Vec3& normal, const Vec3& point) {
+  for (uint32_t k = 0; k < s.polygons.size(); ++k) {
+    const Polygon& p = s.polygons[k];
+    if (s.materials[p.material].name != material || dot(polygon_normal(p), normal) <= 0.999 ||
+        std::fabs(dot(point - p.v[0], normal)) >= 1e-6)
+      continue;
+    bool inside = true;
+    for (int e = 0; e < p.count && inside; ++e)
+      inside = dot(cross(p.v[size_t((e + 1) % p.count)] - p.v[size_t(e)], point - p.v[size_t(e)]), normal) >= 0;
+    if (inside) return k;
+  }
+  ADD_FAILURE() << "no " << material << " polygon there";
+  return 0;
+}
 
 struct ReferenceComparison {
   double rms = 0;  // relative, luminance
