@@ -63,6 +63,13 @@ void Solver::evaluate_pending(IterationStats& is) {
         for (size_t k = begin; k < end; ++k) rank_work().rays += pending_[k].rays;
       });
   share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
+  // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and
+  // leaves up to half of itself unused (a third of a link's memory at the margin, docs/performance.md).
+  std::vector<uint32_t> added(h_.nodes().size(), 0);
+  for (const Pending& p : pending_)
+    if (p.F > 0 || p.sigma > 0) ++added[p.receiver];
+  for (size_t i = 0; i < added.size(); ++i)
+    if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
   for (const Pending& p : pending_) {
     stats_.rays += p.rays;
     is.rays += p.rays;
@@ -84,7 +91,7 @@ void Solver::evaluate_pending(IterationStats& is) {
       ++stats_.links;
     }
   }
-  pending_.clear();
+  std::vector<Pending>().swap(pending_);  // its capacity too: the largest round's list is not kept
 }
 
 void Solver::visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const {

@@ -311,6 +311,7 @@ void Solver::refine_existing() {
         for (size_t k = 0; k < links.size(); ++k) split_link(i, links[k], plan.candidates[k]);
         continue;
       }
+      h_[i].links.reserve(size_t(std::count(plan.action.begin(), plan.action.end(), kKeep)));  // exact: see evaluate_pending
       for (size_t k = 0; k < links.size(); ++k) {
         const Link& l = links[k];
         if (plan.action[k] == kRecast) {
