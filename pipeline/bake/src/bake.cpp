@@ -131,6 +131,10 @@ BakeSummary bake(const BakeSettings& s) {
   const Bounds bounds = input.bounds();
   ContactSplitStats split_stats;
   Scene scene = split_contacts(input, split_stats);
+  // The input's polygons and textures are not read again (the split scene holds copies): freed.
+  const size_t input_polygons = input.polygons.size();
+  std::vector<Polygon>().swap(inputs.scene.polygons);
+  std::vector<Texture>().swap(inputs.scene.textures);
   // Transmission is decided first: its twins (back faces) are geometry, in the rays and the tree.
   const Effect transmission = plan_transmission(scene, s.method, s.effects);
   const std::vector<uint32_t> twins = transmission.on ? add_transmission_twins(scene) : std::vector<uint32_t>{};
@@ -255,7 +259,7 @@ BakeSummary bake(const BakeSettings& s) {
   const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
   json counts = result.counts;
   counts.update(mesh_counts);
-  counts["input_polygons"] = input.polygons.size();
+  counts["input_polygons"] = input_polygons;
   counts["polygons"] = scene.polygons.size();
   counts["contact_cuts"] = split_stats.cuts;
   counts["covered_pieces"] = split_stats.covered;

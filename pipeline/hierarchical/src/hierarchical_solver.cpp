@@ -14,7 +14,11 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       : h_(h), rays_(rays), s_(s), stats_(stats) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
-  cube_.resize(h_.nodes().size());  // every cluster exists from the start
+  // Every cluster exists from the start; only they gather by direction (192 bytes each: by node, the
+  // element roots' unused ones were 144 MB of a 150-room level's 1.8 GB before its first link).
+  cube_slot_.assign(h_.nodes().size(), UINT32_MAX);
+  for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+    if (h_[i].cluster) cube_slot_[i] = uint32_t(cube_.size()), cube_.emplace_back();
   // Punctual lights: each input polygon's direct irradiance, and how much it varies over it (the
   // elements are split for it once a solve has given the tolerances: refine_for_lights).
   if (lights()) {  // every element is an input polygon's root here

@@ -36,7 +36,7 @@ void Solver::gather(HNode& n) {
   // One pass over the links, each source's radiosity read once. A cluster keeps its transfers by
   // direction (directional_irradiance.h); an element gives each child its share of every link
   // (Link::share). Set here so that a Jacobi sweep pushes what it gathered.
-  DirectionalIrradiance* cube = n.cluster ? &cube_[size_t(&n - h_.nodes().data())] : nullptr;
+  DirectionalIrradiance* cube = n.cluster ? &cube_[cube_slot_[size_t(&n - h_.nodes().data())]] : nullptr;
   if (cube) *cube = {};
   const uint32_t shared = n.cluster ? 0 : std::min<uint32_t>(n.child_count, 4);
   for (uint32_t k = 0; k < n.child_count; ++k) {
@@ -96,7 +96,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   const uint32_t count = n.child_count;
   const double area = n.area;
   DirectionalIrradiance total = cube;
-  if (n.cluster) total += cube_[i];
+  if (n.cluster) total += cube_[cube_slot_[i]];
   for (uint32_t k = 0; k < count; ++k) {
     const uint32_t c = h_.child(h_[i], k);
     const HNode& child = h_[c];

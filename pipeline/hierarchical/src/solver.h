@@ -309,7 +309,8 @@ class Solver {
   std::vector<float> spread_;     // by node: the range of its leaves' sent radiosity (measure_spread)
   std::vector<float> emitted_;    // by node: the luminance of its leaves' emission as sent, area mean (measure_spread)
   std::vector<float> weight_;     // by node: its display weight (update_scales)
-  std::vector<DirectionalIrradiance> cube_;  // by cluster node (all made at the start): its own links' gather
+  std::vector<DirectionalIrradiance> cube_;  // by cluster (all made at the start): its own links' gather
+  std::vector<uint32_t> cube_slot_;          // by node made at the start: its cluster's place in cube_
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
