@@ -20,9 +20,8 @@
 namespace walkrad::hierarchical_detail {
 
 // A link found by the refinement, waiting for its form factor (evaluated in parallel).
-// 64 bytes (a round's list is held beside every link while it is evaluated: 80 bytes with 64-bit
-// counts took a fifth more of the Cornell box's peak at --error 0.05; a link casts at most
-// kHiddenRecast × 65535 rays).
+// 64 bytes: a round's list is held beside every link while it is evaluated (80 with 64-bit counts;
+// a link casts at most 8 × its samples, and those are at most kHiddenRecast × 65535: 32 bits hold it).
 struct Pending {
   uint32_t receiver, source;
   int samples = 0;  // rays (or Monte Carlo samples) for this link
