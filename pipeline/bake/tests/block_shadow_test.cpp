@@ -5,38 +5,20 @@
 // saw of them over the whole leaf came out 25-60% bright. A gathered vertex asks again whether it sees
 // a source its link saw in part (point_radiosity.h): within 10% RMS (measured 5.2%; 25.1% without).
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
-#include "walkrad/accuracy/bake_sampler.h"
-#include "walkrad/accuracy/reference_tracer.h"
-#include "walkrad/bake/bake.h"
-#include "walkrad/formats/scene_reader.h"
+#include "default_bake.h"
 #include "walkrad/testing/reference_comparison.h"
 
 namespace walkrad {
 namespace {
 
-namespace fs = std::filesystem;
-
 const std::string kCornell = std::string(WALKRAD_SOURCE_DIR) + "/examples/cornell-box/cornell-box.gltf";
 
 TEST(BlockShadow, FloorInFrontOfTheShortBlockAgreesWithTheReference) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("walkrad-block-shadow-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  BakeSettings s;  // the defaults a user gets
-  s.scene = kCornell;
-  s.output = (dir / "cornell.bake").string();
-  s.progress = false;
-  bake(s);
-  const BakeSampler sampler = BakeSampler::open(s.output);
-  const Scene scene = read_scene(kCornell);
-  const RayScene rays(scene);
-  const ReferenceTracer tracer(scene, rays);
+  const test::DefaultBake baked("block-shadow", kCornell);
+  const Scene& scene = baked.scene;
 
   // The short block's face towards the camera stands on the floor along (0.13, 0.065)-(0.29, 0.114)
   // (cornell-box.md, in metres); out of it, towards the camera, is −z.
@@ -53,12 +35,11 @@ TEST(BlockShadow, FloorInFrontOfTheShortBlockAgreesWithTheReference) {
   ReferenceSettings rs;
   rs.samples = 16384;
   uint64_t cast = 0;
-  const std::vector<RadiosityEstimate> ref = tracer.estimate(at, rs, cast);
-  const test::ReferenceComparison c = test::compare_with_reference(sampler, at, up, 0.01, ref);
+  const std::vector<RadiosityEstimate> ref = baked.tracer.estimate(at, rs, cast);
+  const test::ReferenceComparison c = test::compare_with_reference(baked.sampler, at, up, 0.01, ref);
   std::printf("floor in front of the short block: RMS %.2f%% (the reference's standard error %.2f%%)\n", 100 * c.rms,
               100 * c.bar);
   EXPECT_LT(c.rms, 0.10);
-  if (!std::getenv("WALKRAD_KEEP_TEST_BAKE")) fs::remove_all(dir);
 }
 
 }  // namespace

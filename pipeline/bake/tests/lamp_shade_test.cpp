@@ -7,40 +7,21 @@
 // viewpoint, stayed one element a face and the outside's vertices departed from their own mean
 // instead of from the inside's (docs/numerics.md), and the table under the shade 24-29% dark when a
 // point's overfilled row (an occluder and what it hides both counted) was scaled down as a whole.
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
-#include "walkrad/accuracy/bake_sampler.h"
-#include "walkrad/accuracy/reference_tracer.h"
-#include "walkrad/bake/bake.h"
-#include "walkrad/formats/scene_reader.h"
+#include "default_bake.h"
 #include "walkrad/testing/reference_comparison.h"
 
 namespace walkrad {
 namespace {
 
-namespace fs = std::filesystem;
-
 const std::string kLampRoom = std::string(WALKRAD_SOURCE_DIR) + "/examples/lamp-room/lamp-room.gltf";
 
 TEST(LampShade, OutsideShowsTheBulbThroughIt) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("walkrad-lamp-shade-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  BakeSettings s;  // the defaults a user gets
-  s.scene = kLampRoom;
-  s.output = (dir / "lamp-room.bake").string();
-  s.progress = false;
-  bake(s);
-  const BakeSampler sampler = BakeSampler::open(s.output);
-  const Scene scene = read_scene(kLampRoom);
-  const RayScene rays(scene);
-  const ReferenceTracer tracer(scene, rays);
+  const test::DefaultBake baked("lamp-shade", kLampRoom);
+  const Scene& scene = baked.scene;
 
   // The shade is the box (1.9, 1.8, 0.85)-(2.3, 2.2, 1.25), the bulb at its centre (2.1, 2.0, 1.05);
   // the table top at z = 0.75. Points over the faces the camera sees (+x, +y), corners and middles.
@@ -64,14 +45,13 @@ TEST(LampShade, OutsideShowsTheBulbThroughIt) {
   ReferenceSettings rs;
   rs.samples = 16384;
   uint64_t cast = 0;
-  const std::vector<RadiosityEstimate> ref = tracer.estimate(at, rs, cast);
+  const std::vector<RadiosityEstimate> ref = baked.tracer.estimate(at, rs, cast);
   std::vector<Vec3> up;
   for (const Probe& p : probes) up.push_back(p.normal);
-  const test::ReferenceComparison c = test::compare_with_reference(sampler, at, up, 0.01, ref);
+  const test::ReferenceComparison c = test::compare_with_reference(baked.sampler, at, up, 0.01, ref);
   const double rms = c.rms, bar = c.bar;
   std::printf("shade and table: RMS %.2f%% (the reference's standard error %.2f%%)\n", 100 * rms, 100 * bar);
   EXPECT_LT(rms, 0.05);
-  if (!std::getenv("WALKRAD_KEEP_TEST_BAKE")) fs::remove_all(dir);
 }
 
 }  // namespace

@@ -63,11 +63,13 @@ void Solver::evaluate_pending(IterationStats& is) {
         for (size_t k = begin; k < end; ++k) rank_work().rays += pending_[k].rays;
       });
   share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
-  // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and
-  // leaves up to half of itself unused (a third of a link's memory at the margin, docs/performance.md).
+  // A wholly hidden link stays while it may still see something.
+  auto kept = [](const Pending& p) { return p.F > 0 || p.sigma > 0; };
+  // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
+  // up to half of itself unused (docs/performance.md, "Links held at their size").
   std::vector<uint32_t> added(h_.nodes().size(), 0);
   for (const Pending& p : pending_)
-    if (p.F > 0 || p.sigma > 0) ++added[p.receiver];
+    if (kept(p)) ++added[p.receiver];
   for (size_t i = 0; i < added.size(); ++i)
     if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
   for (const Pending& p : pending_) {
@@ -82,7 +84,7 @@ void Solver::evaluate_pending(IterationStats& is) {
       ++stats_.unoccluded_links;
     }
     if (h_[p.receiver].cluster || h_[p.source].cluster) ++stats_.monte_carlo_links;
-    if (p.F > 0 || p.sigma > 0) {  // a wholly hidden link stays while it may still see something
+    if (kept(p)) {
       Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)),
              uint16_t(std::min(p.samples, 65535))};
       l.seen = p.seen;

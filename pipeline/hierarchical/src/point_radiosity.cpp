@@ -197,7 +197,13 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint3
       // placed at a vertex is a staircase that Gouraud shading smooths into the wrong ramp.
       const bool point_form = !s.cluster && l.open > 0;
       const bool close = point_form && length(s.center - r.center) < kNear * (r.radius + s.radius);
-      if (point_form) near_.push_back({l.source, l.F / double(l.open), close, sent, reflected});
+      if (point_form) {
+        const double visible = l.F / double(l.open);
+        const RayScene* rays = clusters.rays();
+        // Once a leaf, not at each of its points (visible_at).
+        const Vec3 target = rays && visible > 0 && visible <= kWhole ? polygon_centroid(s.shape) + s.normal * rays->offset() : Vec3{};
+        near_.push_back({l.source, visible, close, sent, reflected, target});
+      }
       // As the solve pushes it: by the part's share (the leaf's own links by the quadrant the point
       // falls in).
       for (uint32_t q = 0; q < 4; ++q) {
@@ -232,9 +238,7 @@ void LeafRadiosity::near_parts(uint32_t node, const Vec3& x, const Vec3& normal,
 double LeafRadiosity::visible_at(const Near& s, const Vec3& x) const {
   const RayScene* rays = clusters_.rays();
   if (!rays || s.visible <= 0 || s.visible > kWhole) return s.visible;
-  const HNode& src = h_[s.source];
-  const Vec3 from = x + h_[leaf_].normal * rays->offset();
-  return rays->occluded(from, polygon_centroid(src.shape) + src.normal * rays->offset()) ? 0.0 : 1.0;
+  return rays->occluded(x + h_[leaf_].normal * rays->offset(), s.target) ? 0.0 : 1.0;
 }
 
 Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {

@@ -100,6 +100,7 @@ class LeafRadiosity {
     double visible;  // F / F_open of the link
     bool close;      // near enough for the point's form factor at every vertex (else at gathered ones only)
     Vec3 sent, reflected;  // what the link takes from the source (ClusterGather::sent)
+    Vec3 target;           // where visible_at's rays end (seen in part, rays given): the source's centre, lifted
   };
   // At a gathered point: whether it sees a source its link saw in part (else the link's fraction).
   double visible_at(const Near& s, const Vec3& x) const;
