@@ -41,11 +41,13 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
   importance_ = s_.use_importance && root.R > 0;
   stats_.oracle = importance_ ? "importance" : "view-independent";
   if (importance_) {
-    const double scale = root.area / root.R;
+    // The hits themselves are scaled, not only the nodes' R: an element split later sums its hits'
+    // weights, and took them unscaled (a 1/Σ A share) until 2026-11-27, so that a seen element lost its
+    // direct importance once split (an office room's refined leaves showed 0.03 of their weight).
+    h_.scale_view_hits(root.area / root.R);
     std::vector<std::pair<double, double>> seen;  // density, area
     double total = 0;
     for (HNode& n : h_.nodes()) {
-      n.R *= scale;
       n.I = n.R;
       if (!n.cluster && n.R > 0 && n.area > 0) {
         seen.push_back({n.R / n.area, n.area});

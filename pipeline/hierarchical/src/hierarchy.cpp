@@ -191,6 +191,11 @@ void Hierarchy::set_view_hits(std::vector<ViewHit> hits) {
   }
 }
 
+void Hierarchy::scale_view_hits(double s) {
+  for (ViewHit& h : hits_) h.weight *= s;
+  for (HNode& n : nodes_) n.R *= s;
+}
+
 void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point, Vec3& normal, uint32_t* child) const {
   if (child) *child = 0;
   if (!n.cluster) {

@@ -117,6 +117,44 @@ TEST(Hierarchical, PushPullConservesPowerAtEveryLevel) {
   }
 }
 
+// Direct importance is scaled once (Σ R = Σ A) and stays so in the elements the refinement makes:
+// a split element's children share its R, and the leaves' R sum to the root's area. (The children
+// once summed the unscaled hits, a 1/ΣA share of them: a seen element lost its weight when split.)
+TEST(Hierarchical, ImportanceKeepsItsUnitWhenElementsSplit) {
+  const Scene scene = read_scene(kCornell);
+  const ClusterTree tree = build_cluster_tree(scene);
+  Hierarchy h(scene, tree);
+  std::vector<ViewHit> hits;
+  for (uint32_t p = 0; p < scene.polygons.size(); ++p) {
+    const Polygon& poly = scene.polygons[p];
+    Vec3 c;
+    for (int k = 0; k < poly.count; ++k) c += poly.v[k];
+    for (int k = 0; k < poly.count; ++k)  // between the centre and each corner: in different quadrants
+      hits.push_back({p, (c / double(poly.count) + poly.v[k]) * 0.5, 1e-3, 0});
+  }
+  h.set_view_hits(hits);
+  const RayScene rays(scene);
+  HierarchicalSettings s;
+  HierarchicalStats stats;
+  solve_hierarchical(h, rays, s, stats);
+  ASSERT_EQ(stats.oracle, "importance");
+  double leaves = 0;
+  size_t split = 0;
+  for (const HNode& n : h.nodes()) {
+    if (n.cluster) continue;
+    if (n.child_count == 0) {
+      leaves += n.R;
+      continue;
+    }
+    ++split;
+    double sum = 0;
+    for (uint32_t k = 0; k < n.child_count; ++k) sum += h[h.child(n, k)].R;
+    ASSERT_NEAR(sum, n.R, 1e-9 * n.R);
+  }
+  EXPECT_GT(split, 0u);
+  EXPECT_NEAR(leaves, h[h.root()].area, 1e-9 * h[h.root()].area);
+}
+
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), {}};

@@ -128,6 +128,9 @@ class Hierarchy {
   // below. Hits follow elements as they split.
   void set_view_hits(std::vector<ViewHit> hits);
   const std::vector<ViewHit>& hits() const { return hits_; }
+  // Every hit's weight and every node's R times s: a unit chosen once applies to the elements made
+  // later as well (subdivide sums the hits' weights).
+  void scale_view_hits(double s);
 
   // What refinement and the solve change (every node, its links, the children, the view hits), for
   // a checkpoint; load_state restores it into a hierarchy built from the same scene and tree.
