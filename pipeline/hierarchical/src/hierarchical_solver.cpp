@@ -74,6 +74,10 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const size_t before = pending_.size();
     const size_t elements_before = h_.element_count();
     if (it == 0) {
+      if (importance_) {  // the close-pair rule weighs by direct importance (close_matters)
+        direct_weights_ = true;
+        update_scales();
+      }
       refine_first();  // as high as links may go: the error is measured from round 1
     } else {
       direct_weights_ = it == 1;
@@ -90,7 +94,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     if (s_.check_limits) s_.check_limits("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
     if (s_.closed_rows && !s_.closed && is.new_links > 0) {
-      stats_.balance_unbalanced = normalise_closed_rows(h_, &stats_.mean_row_sum);
+      const std::vector<uint8_t> unscaled = under_close_pairs();
+      stats_.balance_unbalanced = normalise_closed_rows(h_, &stats_.mean_row_sum, &unscaled);
     }
     const bool settled = is.new_links == 0 && h_.element_count() == elements_before;  // (lights split elements too)
     if (settled && converged_before) {

@@ -242,6 +242,10 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   // to 8n) until a quarter of n did, or the visibility fraction would rest on one or no sample
   // (and be 0 for a link whose unoccluded form factor is known to be positive).
   const int n = std::max(1, p.samples);
+  // A close pair left whole (close_matters): each sample stands for a disc of 1/n of the source's
+  // area, whose form factor A/(πr² + A) is bounded where 1/r² is not (Wallace, Elmquist & Haines
+  // 1989). Between touching books the point kernel's tail made rows sum past 1.
+  const double disc = close_pair(p.receiver, p.source) ? sj.area / n : 0.0;
   double mc = 0, weighted = 0, open = 0;
   int drawn = 0, facing = 0;
   std::vector<ClusterSample>& drawn_samples = cluster_scratch_;
@@ -264,7 +268,7 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     const Vec3 u = d / std::sqrt(r2);
     const double ci = dot(ni, u), cj = -dot(nj, u);
     if (ci <= 0 || cj <= 0) continue;
-    const double kernel = ci * cj * sj.area / (kPi * r2);  // finite: linked clusters do not overlap
+    const double kernel = ci * cj * sj.area / (kPi * r2 + disc);  // finite: linked clusters do not overlap
     mc += kernel;
     ++facing;
     drawn_samples.back().value = kernel;

@@ -67,6 +67,28 @@ void Solver::mark_two_sided_clusters() {
   }
 }
 
+bool Solver::close_pair(uint32_t i, uint32_t j) const {
+  const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
+  return reach > 0 && clearly_greater(0.5 * reach, box_distance(h_[i].bounds, h_[j].bounds));
+}
+
+std::vector<uint8_t> Solver::under_close_pairs() const {
+  std::vector<uint8_t> out(h_.nodes().size(), 0);
+  for (uint32_t k = 0; k < out.size(); ++k) {  // parents first
+    const HNode& n = h_[k];
+    if (n.parent >= 0 && out[size_t(n.parent)]) {
+      out[k] = 1;
+      continue;
+    }
+    for (const Link& l : n.links)
+      if (close_pair(k, l.source)) {
+        out[k] = 1;
+        break;
+      }
+  }
+  return out;
+}
+
 bool Solver::splittable(uint32_t i) const {
   const HNode& n = h_[i];
   if (n.cluster) return n.child_count > 0;
@@ -139,9 +161,9 @@ void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<u
   // other end's. Closer, a surface of the cluster may lie centimetres from the other end (a
   // bookcase against a wall), where the point-sampled kernel 1/r² has huge variance and the
   // cluster's average radiosity says nothing of that surface.
-  const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
-  const bool must_split = (reach > 0 && clearly_greater(0.5 * reach, box_distance(h_[i].bounds, h_[j].bounds))) ||
-                          two_sided(i) || two_sided(j);
+  // Where the walkthrough does not look, the pair stays whole (its kernel bounded: evaluate; its
+  // receivers' rows left unscaled: under_close_pairs).
+  const bool must_split = (close_pair(i, j) && close_matters(i)) || two_sided(i) || two_sided(j);
 
   // Candidates between the two: the parent's list filtered by this pair's shaft.
   const Shaft shaft(h_[i].bounds, h_[j].bounds);

@@ -316,7 +316,7 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_it
 
 bool scalable_row(double raw_row) { return raw_row >= kMinRaw && raw_row <= kMaxRaw; }
 
-uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row) {
+uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row, const std::vector<uint8_t>* unscaled) {
   const auto one = [](const HNode&) { return 1.0; };
   const std::vector<double> raw = row_sums(h, one);
   uint64_t left = 0;
@@ -326,7 +326,7 @@ uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row) {
     n.balanced = false;  // also on nodes that were leaves in an earlier round
     if (!is_leaf_element(n)) continue;
     n.send = 1.0;
-    n.balanced = scalable_row(raw[k]);
+    n.balanced = scalable_row(raw[k]) && !(unscaled && (*unscaled)[k]);
     n.receive = n.balanced ? std::clamp(1.0 / raw[k], kMinFactor, kMaxFactor) : 1.0;
     left += !n.balanced;
     area += n.area;

@@ -167,6 +167,15 @@ class Solver {
 
   bool splittable(uint32_t i) const;
 
+  // A cluster end within half its radius of the other end (link_refinement.cpp), and whether the
+  // receiver's display needs such a pair split: an error as large as what it shows stays within its
+  // tolerance where its display weight is under e.
+  bool close_pair(uint32_t i, uint32_t j) const;
+  bool close_matters(uint32_t i) const { return !importance_ || display_weight(i) >= s_.error; }
+  // The leaves under a close pair left whole (their own links or an ancestor's): a closed scene's row
+  // scaling is not applied to them (normalise_closed_rows).
+  std::vector<uint8_t> under_close_pairs() const;
+
   // A link refine() found, as a pair refined beside others keeps it until the lists are joined (a
   // fifth of a Pending: the lists and the round's list are held together for a moment).
   struct NewLink {

@@ -3,6 +3,7 @@
 // not depend on the thread count.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -99,16 +100,24 @@ TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
 
 INSTANTIATE_TEST_SUITE_P(Reflectances, HierarchicalFurnace, ::testing::Values(0.5, 0.9, 0.99));
 
+// The Cornell box's hierarchy solved with the default settings (`before` runs first: view hits).
+struct SolvedCornell {
+  explicit SolvedCornell(const std::function<void(Hierarchy&, const Scene&)>& before = {}) {
+    if (before) before(h, scene);
+    solve_hierarchical(h, rays, HierarchicalSettings{}, stats);
+  }
+  Scene scene = read_scene(kCornell);
+  ClusterTree tree = build_cluster_tree(scene);
+  Hierarchy h{scene, tree};
+  RayScene rays{scene};
+  HierarchicalStats stats;
+};
+
 // Push-pull: at every node, A·B equals the sum of A·B of its children (so every level of the
 // hierarchy holds the same power as the leaves).
 TEST(Hierarchical, PushPullConservesPowerAtEveryLevel) {
-  const Scene scene = read_scene(kCornell);
-  const ClusterTree tree = build_cluster_tree(scene);
-  Hierarchy h(scene, tree);
-  const RayScene rays(scene);
-  HierarchicalSettings s;
-  HierarchicalStats stats;
-  solve_hierarchical(h, rays, s, stats);
+  const SolvedCornell solved;
+  const Hierarchy& h = solved.h;
   for (const HNode& n : h.nodes()) {
     if (!n.child_count) continue;
     Vec3 sum;
@@ -121,23 +130,19 @@ TEST(Hierarchical, PushPullConservesPowerAtEveryLevel) {
 // a split element's children share its R, and the leaves' R sum to the root's area. (The children
 // once summed the unscaled hits, a 1/ΣA share of them: a seen element lost its weight when split.)
 TEST(Hierarchical, ImportanceKeepsItsUnitWhenElementsSplit) {
-  const Scene scene = read_scene(kCornell);
-  const ClusterTree tree = build_cluster_tree(scene);
-  Hierarchy h(scene, tree);
-  std::vector<ViewHit> hits;
-  for (uint32_t p = 0; p < scene.polygons.size(); ++p) {
-    const Polygon& poly = scene.polygons[p];
-    Vec3 c;
-    for (int k = 0; k < poly.count; ++k) c += poly.v[k];
-    for (int k = 0; k < poly.count; ++k)  // between the centre and each corner: in different quadrants
-      hits.push_back({p, (c / double(poly.count) + poly.v[k]) * 0.5, 1e-3, 0});
-  }
-  h.set_view_hits(hits);
-  const RayScene rays(scene);
-  HierarchicalSettings s;
-  HierarchicalStats stats;
-  solve_hierarchical(h, rays, s, stats);
-  ASSERT_EQ(stats.oracle, "importance");
+  const SolvedCornell solved([](Hierarchy& h, const Scene& scene) {
+    std::vector<ViewHit> hits;
+    for (uint32_t p = 0; p < scene.polygons.size(); ++p) {
+      const Polygon& poly = scene.polygons[p];
+      Vec3 c;
+      for (int k = 0; k < poly.count; ++k) c += poly.v[k];
+      for (int k = 0; k < poly.count; ++k)  // between the centre and each corner: in different quadrants
+        hits.push_back({p, (c / double(poly.count) + poly.v[k]) * 0.5, 1e-3, 0});
+    }
+    h.set_view_hits(hits);
+  });
+  const Hierarchy& h = solved.h;
+  ASSERT_EQ(solved.stats.oracle, "importance");
   double leaves = 0;
   size_t split = 0;
   for (const HNode& n : h.nodes()) {
@@ -153,6 +158,31 @@ TEST(Hierarchical, ImportanceKeepsItsUnitWhenElementsSplit) {
   }
   EXPECT_GT(split, 0u);
   EXPECT_NEAR(leaves, h[h.root()].area, 1e-9 * h[h.root()].area);
+}
+
+// A closed scene's rows are scaled to 1, except the leaves the solver marks (those under a close
+// cluster pair left whole, whose bounded kernel is low: scaled up, they made light; docs/numerics.md).
+TEST(ClosedRows, MarkedLeavesKeepTheirRawRow) {
+  SolvedCornell solved;
+  Hierarchy& h = solved.h;
+  normalise_closed_rows(h);
+  std::vector<uint8_t> marked(h.nodes().size(), 0);
+  size_t scaled = 0, marked_leaves = 0;
+  for (uint32_t k = 0; k < h.nodes().size(); ++k) {
+    const HNode& n = h[k];
+    if (!is_leaf_element(n) || !n.balanced) continue;
+    scaled += n.receive != 1.0;
+    if (k % 2) marked[k] = 1, ++marked_leaves;  // every other balanced leaf
+  }
+  ASSERT_GT(scaled, 100u);
+  const uint64_t left_before = normalise_closed_rows(h);
+  const uint64_t left = normalise_closed_rows(h, nullptr, &marked);
+  EXPECT_EQ(left, left_before + marked_leaves);
+  for (uint32_t k = 0; k < h.nodes().size(); ++k) {
+    if (!marked[k]) continue;
+    EXPECT_FALSE(h[k].balanced);
+    EXPECT_EQ(h[k].receive, 1.0);
+  }
 }
 
 std::string read_bytes(const fs::path& p) {

@@ -65,8 +65,9 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance = 1e-9, int
 // receive factor is 1 / its row sum, so that it gathers as from a whole enclosure; send factors stay 1.
 // Coarse links leave office-floor's leaves a mean row sum of 0.97 (area-weighted), and its visited
 // rooms 2.9% too dark; scaled, 1.1% (docs/numerics.md, "Closed scenes"). Leaves whose raw row sum lies
-// outside [1/4, 4] keep 1. Returns the number of such leaves; mean_row: the area-weighted mean raw sum.
-uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row = nullptr);
+// outside [1/4, 4] keep 1, and so do the leaves `unscaled` marks (under a close cluster pair left whole:
+// Solver::under_close_pairs). Returns the number of such leaves; mean_row: the area-weighted mean raw sum.
+uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row = nullptr, const std::vector<uint8_t>* unscaled = nullptr);
 
 // One aggregation correction of the leaves' radiosity (indirect light on). Returns the largest
 // change of a leaf's B relative to max(its B, floor). Updates B and Bt everywhere.
