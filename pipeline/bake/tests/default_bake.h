@@ -38,7 +38,7 @@ class DefaultBake {
   }
 
  private:
-  std::filesystem::path dir_;
+  std::filesystem::path dir_;  // first: the members below are made in declaration order, the bake into it
 
  public:
   const Scene scene;

@@ -74,6 +74,7 @@ bool Solver::close_pair(uint32_t i, uint32_t j) const {
 
 std::vector<uint8_t> Solver::under_close_pairs() const {
   std::vector<uint8_t> out(h_.nodes().size(), 0);
+  if (!importance_) return out;  // every close pair matters (close_matters): none is left whole
   for (uint32_t k = 0; k < out.size(); ++k) {  // parents first
     const HNode& n = h_[k];
     if (n.parent >= 0 && out[size_t(n.parent)]) {
@@ -157,11 +158,10 @@ void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<u
     if (!ri.cluster && behind(ri, sj.bounds)) return;
     if (!sj.cluster && behind(sj, ri.bounds)) return;
   }
-  // A cluster is linked only from far enough away: its bounds at least half its radius from the
-  // other end's. Closer, a surface of the cluster may lie centimetres from the other end (a
-  // bookcase against a wall), where the point-sampled kernel 1/r² has huge variance and the
-  // cluster's average radiosity says nothing of that surface.
-  // Where the walkthrough does not look, the pair stays whole (its kernel bounded: evaluate; its
+  // A cluster is linked only from far enough away (close_pair): closer, a surface of the cluster may
+  // lie centimetres from the other end (a bookcase against a wall), where the point-sampled kernel
+  // 1/r² has huge variance and the cluster's average radiosity says nothing of that surface. Where the
+  // walkthrough does not look the pair stays whole (close_matters; its kernel bounded: evaluate; its
   // receivers' rows left unscaled: under_close_pairs).
   const bool must_split = (close_pair(i, j) && close_matters(i)) || two_sided(i) || two_sided(j);
 
