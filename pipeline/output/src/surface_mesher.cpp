@@ -35,6 +35,7 @@ constexpr double kInward = 0.05;
 struct CellKey {
   int64_t x, y, z;
   bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
+  bool operator<(const CellKey& o) const { return x != o.x ? x < o.x : y != o.y ? y < o.y : z < o.z; }
 };
 struct CellHash {
   size_t operator()(const CellKey& k) const {
@@ -51,6 +52,18 @@ class PointGrid {
     return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)), int64_t(std::floor(p.z / cell_))};
   }
   void add(const Vec3& p, uint32_t id) { cells_[key(p)].push_back(id); }
+  // The 27 cells around p's, appended to keys.
+  void keys_around(const Vec3& p, std::vector<CellKey>& keys) const {
+    const CellKey k = key(p);
+    for (int64_t dz = -1; dz <= 1; ++dz)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dx = -1; dx <= 1; ++dx) keys.push_back({k.x + dx, k.y + dy, k.z + dz});
+  }
+  const std::vector<uint32_t>& in(const CellKey& k) const {
+    static const std::vector<uint32_t> none;
+    const auto it = cells_.find(k);
+    return it == cells_.end() ? none : it->second;
+  }
   template <class F>
   void around(const Vec3& p, F&& visit) const {
     const CellKey k = key(p);
@@ -109,37 +122,45 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     for (int k = 0; k < faces[i].shape.count; ++k) corner[i][size_t(k)] = weld_point(faces[i].shape.v[k]);
 
   // 2. Each face's boundary: its corners with the vertices lying inside its edges, in order. Edges are
-  // walked in steps of the grid's cell, visiting the cells around each step.
+  // walked in steps of the grid's cell; the cells around the steps, each once, hold the candidates.
+  // Faces in parallel (the grid only read), joined in face order.
   const double cell = std::max(edge_sum / double(std::max<size_t>(faces.size(), 1)) / 4.0, 4 * weld_tol);
   PointGrid grid(cell);
   for (uint32_t id = 0; id < points.size(); ++id) grid.add(points[id], id);
-  std::vector<uint32_t> boundary, boundary_begin{0};
-  std::vector<uint32_t> candidates;
-  std::vector<std::pair<double, uint32_t>> on_edge;
-  for (size_t i = 0; i < faces.size(); ++i) {
-    const int n = faces[i].shape.count;
-    for (int k = 0; k < n; ++k) {
-      const uint32_t a = corner[i][size_t(k)], b = corner[i][size_t((k + 1) % n)];
-      const Vec3 p = points[a], d = points[b] - points[a];
-      const double len2 = dot(d, d), len = std::sqrt(len2);
-      const int steps = int(std::ceil(len / cell));
-      candidates.clear();
-      for (int s = 0; s <= steps; ++s)
-        grid.around(p + d * (double(s) / std::max(steps, 1)), [&](uint32_t id) { candidates.push_back(id); });
-      std::sort(candidates.begin(), candidates.end());
-      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      on_edge.clear();
-      for (uint32_t id : candidates) {
-        if (id == a || id == b) continue;
-        const double t = dot(points[id] - p, d) / len2;
-        if (t * len <= weld_tol || (1 - t) * len <= weld_tol) continue;
-        if (length(p + d * t - points[id]) <= weld_tol) on_edge.push_back({t, id});
+  std::vector<std::vector<uint32_t>> face_boundary(faces.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<CellKey> keys;
+    std::vector<std::pair<double, uint32_t>> on_edge;
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const int n = faces[i].shape.count;
+      for (int k = 0; k < n; ++k) {
+        const uint32_t a = corner[i][size_t(k)], b = corner[i][size_t((k + 1) % n)];
+        const Vec3 p = points[a], d = points[b] - points[a];
+        const double len2 = dot(d, d), len = std::sqrt(len2);
+        const int steps = int(std::ceil(len / cell));
+        keys.clear();
+        for (int s = 0; s <= steps; ++s) grid.keys_around(p + d * (double(s) / std::max(steps, 1)), keys);
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        on_edge.clear();
+        for (const CellKey& key : keys)
+          for (uint32_t id : grid.in(key)) {  // a point lies in one cell: each candidate once
+            if (id == a || id == b) continue;
+            const double t = dot(points[id] - p, d) / len2;
+            if (t * len <= weld_tol || (1 - t) * len <= weld_tol) continue;
+            if (length(p + d * t - points[id]) <= weld_tol) on_edge.push_back({t, id});
+          }
+        std::sort(on_edge.begin(), on_edge.end());
+        face_boundary[i].push_back(a);
+        for (const auto& [t, id] : on_edge) face_boundary[i].push_back(id);
       }
-      std::sort(on_edge.begin(), on_edge.end());
-      boundary.push_back(a);
-      for (const auto& [t, id] : on_edge) boundary.push_back(id);
     }
+  });
+  std::vector<uint32_t> boundary, boundary_begin{0};
+  for (std::vector<uint32_t>& b : face_boundary) {
+    boundary.insert(boundary.end(), b.begin(), b.end());
     boundary_begin.push_back(uint32_t(boundary.size()));
+    std::vector<uint32_t>().swap(b);
   }
 
   // 3. Smoothing groups: polygons of one material facing the same way that share a boundary vertex.
