@@ -64,8 +64,15 @@ void Solver::gather(HNode& n) {
 }
 
 void Solver::gather_subtree(uint32_t i) {
-  gather(h_[i]);
-  for (uint32_t k = 0; k < h_[i].child_count; ++k) gather_subtree(h_.child(h_[i], k));
+  // A polygon's elements gather from other polygons only (a plane does not see itself), and each
+  // writes its own H and its children's Hp: they gather in parallel, each as it would alone.
+  std::vector<uint32_t>& subtree = subtree_scratch_;
+  subtree.assign(1, i);
+  for (size_t k = 0; k < subtree.size(); ++k)
+    for (uint32_t c = 0; c < h_[subtree[k]].child_count; ++c) subtree.push_back(h_.child(h_[subtree[k]], c));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, subtree.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) gather(h_[subtree[k]]);
+  });
 }
 
 Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {

@@ -293,6 +293,7 @@ class Solver {
   void gather(HNode& n);
 
   void gather_subtree(uint32_t i);
+  std::vector<uint32_t> subtree_scratch_;  // gather_subtree's nodes
 
   // down, down_sum: what the element ancestors' links push here; cube: what the cluster ancestors'
   // links hold by direction (taken by the first element below them).
