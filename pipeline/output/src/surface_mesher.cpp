@@ -200,14 +200,22 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // differ only by their leaves' coarser parts, and reading it from each face took 3.5 evaluations a
   // vertex. The Cornell box (medium): mesh phase 0.60x, 1.031 -> 1.033% weighted RMS; lamp-room
   // 1.253 -> 1.252%; test ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
-  std::unordered_map<uint64_t, uint32_t> slot;  // (point, group) → accumulator
-  std::vector<uint32_t> slot_point, face_slots(boundary.size());
+  // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
+  std::vector<uint32_t> slot_point, slot_group, slot_next, face_slots(boundary.size());
+  std::vector<uint32_t> first_slot(points.size(), UINT32_MAX);
   for (size_t i = 0; i < faces.size(); ++i) {
-    const uint64_t g = group[faces[i].polygon];
+    const uint32_t g = group[faces[i].polygon];
     for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-      const auto [it, fresh] = slot.try_emplace(uint64_t(boundary[j]) * polygons + g, uint32_t(slot_point.size()));
-      if (fresh) slot_point.push_back(boundary[j]);
-      face_slots[j] = it->second;
+      uint32_t s = first_slot[boundary[j]];
+      while (s != UINT32_MAX && slot_group[s] != g) s = slot_next[s];
+      if (s == UINT32_MAX) {
+        s = uint32_t(slot_point.size());
+        slot_point.push_back(boundary[j]);
+        slot_group.push_back(g);
+        slot_next.push_back(first_slot[boundary[j]]);
+        first_slot[boundary[j]] = s;
+      }
+      face_slots[j] = s;
     }
   }
   const size_t slots = slot_point.size();
