@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "walkrad/core/rounding.h"
+#include "walkrad/formfactor/form_factor.h"
 #include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad::hierarchical_detail {
@@ -135,11 +136,12 @@ void Solver::measure_variation() {
       // The refinement measures everything the links carry; the estimate, at a gathered receiver, only
       // what they still bring to its vertices (the gather evaluates the emitters' light there).
       const bool gather = gathered(uint32_t(i));
-      double H = 0, Hc[4] = {}, G = 0, Gc[4] = {};
+      double H = 0, Hc[4] = {}, G = 0, Gc[4] = {}, inner = 0;
       for (const Link& l : n.links) {
         const double b = luminance(link_sent(l)) * l.F, g = gather ? reflected_sent(l) * l.F : b;
         H += b;
         G += g;
+        if (max_component(h_[l.source].emission) > 0) inner += b * double(l.inner) / 64.0;
         for (uint32_t k = 0; k < kids; ++k) {
           Hc[k] += b * double(l.share[k]);
           Gc[k] += g * double(l.share[k]);
@@ -151,6 +153,17 @@ void Solver::measure_variation() {
         worst = std::max(worst, rho * std::fabs(Hc[k] - H));
         squares += rho * rho * (Gc[k] - G) * (Gc[k] - G);
       }
+      // And inside the children, for the emitters' links: a lamp 2 mm under a ceiling lights a wall
+      // most two thirds of the way up and its top metre hardly at all, a peak inside each quadrant of
+      // the wall that the shares flatten (test AWallUnderAGrazingLampKeepsItsProfileAtACoarseError).
+      // Σ inner bounds it; where the bound passes the tolerance, the emitters' irradiance is taken at
+      // the centres of the children's quarters, so that transfers which cancel (a furnace's faces)
+      // stay unsplit. Every link's inner variation, not only the emitters', refined the Cornell box to
+      // the error a finer tolerance gives for as many links, and made ContactShadow's floor worse
+      // (docs/accuracy.md, "Why the default is not medium").
+      const double rho = luminance(n.rho);
+      if (!n.cluster && rho * inner > worst && clearly_greater(rho * inner, tolerance(uint32_t(i))))
+        worst = std::max(worst, rho * emitted_inner(uint32_t(i)));
       variation_[i] = float(worst);
       // Shares already give each child its own mean (the push and the vertices use them), so what is
       // left is the variation inside a child: for a transfer that varies linearly across the node, a
@@ -159,6 +172,34 @@ void Solver::measure_variation() {
       left_[i] = float(std::sqrt(squares / double(kids) / 3.0));
     }
   });
+}
+
+double Solver::emitted_inner(uint32_t i) const {
+  // The emitters' unoccluded irradiance at the centres of the quarters of each child (split_element
+  // twice), times the fraction of each source its link sees; the largest departure of a quarter from
+  // its child's mean.
+  const HNode& n = h_[i];
+  const std::array<Polygon, 4> kids = split_element(n.shape);
+  double E[4][4] = {};
+  Vec3 x[4][4];
+  for (int c = 0; c < 4; ++c) {
+    const std::array<Polygon, 4> quarters = split_element(kids[size_t(c)]);
+    for (int q = 0; q < 4; ++q) x[c][q] = polygon_centroid(quarters[size_t(q)]);
+  }
+  for (const Link& l : n.links) {
+    const HNode& s = h_[l.source];
+    if (s.cluster || max_component(s.emission) <= 0 || l.open <= 0) continue;
+    const double sent = luminance(link_sent(l)) * std::min(1.0, l.F / double(l.open));
+    for (int c = 0; c < 4; ++c)
+      for (int q = 0; q < 4; ++q)
+        if (dot(x[c][q] - s.shape.v[0], s.normal) > 0) E[c][q] += sent * point_to_polygon(x[c][q], n.normal, s.shape);
+  }
+  double worst = 0;
+  for (int c = 0; c < 4; ++c) {
+    const double mean = 0.25 * (E[c][0] + E[c][1] + E[c][2] + E[c][3]);
+    for (int q = 0; q < 4; ++q) worst = std::max(worst, std::fabs(E[c][q] - mean));
+  }
+  return worst;
 }
 
 double Solver::transfer_estimate(const HNode& ri, const HNode& sj) const {

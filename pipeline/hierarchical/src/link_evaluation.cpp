@@ -85,7 +85,7 @@ void Solver::evaluate_pending(IterationStats& is) {
     }
     if (h_[p.receiver].cluster || h_[p.source].cluster) ++stats_.monte_carlo_links;
     if (kept(p)) {
-      Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)),
+      Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
              uint16_t(std::min(p.samples, 65535))};
       l.seen = p.seen;
       normalize_shares(h_, p.receiver, l);
@@ -163,11 +163,27 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   segments.clear();
   double area[4], unoccluded[4];
   double seen[4] = {0, 0, 0, 0};  // the visible kernel by the source's quadrant (Link::seen)
+  double inner = 0;               // Link::inner, as a share of a child's kernel
   for (int c = 0; c < 4; ++c) {
     area[c] = polygon_area(kids[c]);
     unoccluded[c] = 0;
-    for (const QuadraturePoint& q : quadrature_points(kids[c], order))
-      if (dot(q.position - sj.shape.v[0], sj.normal) > 0) unoccluded[c] += q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
+    // The points come row by row (quadrature_points): with an even order each quarter of the child
+    // holds (order/2)² of them, whose mean against the child's is Link::inner.
+    double quarter[4] = {0, 0, 0, 0}, quarter_w[4] = {0, 0, 0, 0};
+    int k = 0;
+    for (const QuadraturePoint& q : quadrature_points(kids[c], order)) {
+      const int part = (k / order >= order / 2 ? 2 : 0) + (k % order >= order / 2 ? 1 : 0);
+      ++k;
+      quarter_w[part] += q.weight;
+      if (dot(q.position - sj.shape.v[0], sj.normal) <= 0) continue;
+      const double f = q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
+      unoccluded[c] += f;
+      quarter[part] += f;
+    }
+    if (order >= 2 && order % 2 == 0 && unoccluded[c] > 0 && area[c] > 0)
+      for (int part = 0; part < 4; ++part)
+        if (quarter_w[part] > 0)
+          inner = std::max(inner, std::fabs(quarter[part] / quarter_w[part] - unoccluded[c] / area[c]));
     for (int k = 0; k < per_child; ++k) {
       // Named: the order of arguments' evaluation is unspecified (the order GCC took is kept).
       const double xv = rng.uniform(), xu = rng.uniform();
@@ -215,6 +231,7 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
     p.sigma = p.open / float(segments.size());
   }
   p.share = shares(Fc, sigma_c, 4, p.F);
+  p.inner = p.F > 0 ? uint8_t(std::min(255.0, std::round(64.0 * inner / p.F))) : 0;
   if (per_child > 0 && p.F > 0) {  // where rays were cast
     double area_share[4];
     quadrant_area_shares(sj.shape, sj.area, area_share);

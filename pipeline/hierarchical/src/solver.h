@@ -27,6 +27,7 @@ struct Pending {
   int samples = 0;  // rays (or Monte Carlo samples) for this link
   bool need_rays;   // Embree rays (against the solid scene when volume)
   bool volume = false;  // volume clusters in the shaft stand in for their polygons (volume_visibility.h)
+  uint8_t inner = 0;    // Link::inner
   double F = 0;
   float sigma = 0, open = 0;
   std::array<float, 4> share = {1, 1, 1, 1};
@@ -132,6 +133,9 @@ class Solver {
   // link: the pair's link where it has been evaluated (its form factor, or for a wholly hidden one the
   // part its rays could have missed, replaces the estimate).
   bool worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* link = nullptr) const;
+  // The largest departure of the emitters' irradiance at a quarter of one of element i's children
+  // from that child's mean (measure_variation; Link::inner bounds it).
+  double emitted_inner(uint32_t i) const;
 
   // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
   static constexpr int kHiddenRecast = 8;

@@ -33,6 +33,11 @@ struct Link {
   float open = 0;   // the unoccluded form factor: F / open is the fraction of the source the receiver sees
   std::array<float, 4> share = {1, 1, 1, 1};
   uint8_t rays = 0;  // 1: visibility by Embree rays (something can block), 2: through volumes (Pending's flags)
+  // How unevenly the unoccluded kernel falls inside the receiver's children: the largest departure of
+  // a quarter of a child from that child's mean, in 64ths of F (an element receiver's quadrature points
+  // grouped by quarter; 0 where there are too few). The shares say how the children differ; a transfer
+  // that peaks inside each child they miss (error_estimate.cpp). In the padding: Link stays 48 bytes.
+  uint8_t inner = 0;
   uint16_t samples = 0;  // the rays (or Monte Carlo samples) it was evaluated with
   // Where the receiver sees part of the source: how much of what arrives comes from each of the
   // source's children (an element's quadrants in split_element order, a cluster's children; at most
