@@ -164,23 +164,25 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   double area[4], unoccluded[4];
   double seen[4] = {0, 0, 0, 0};  // the visible kernel by the source's quadrant (Link::seen)
   double inner = 0;               // Link::inner, as a share of a child's kernel
+  // Only the emitters' links are read for it (measure_variation); even orders split into quarters.
+  const bool quarters = max_component(sj.emission) > 0 && order >= 2 && order % 2 == 0;
   for (int c = 0; c < 4; ++c) {
     area[c] = polygon_area(kids[c]);
     unoccluded[c] = 0;
     // The points come row by row (quadrature_points): with an even order each quarter of the child
     // holds (order/2)² of them, whose mean against the child's is Link::inner.
     double quarter[4] = {0, 0, 0, 0}, quarter_w[4] = {0, 0, 0, 0};
-    int k = 0;
+    int point = 0;
     for (const QuadraturePoint& q : quadrature_points(kids[c], order)) {
-      const int part = (k / order >= order / 2 ? 2 : 0) + (k % order >= order / 2 ? 1 : 0);
-      ++k;
+      const int part = (point / order >= order / 2 ? 2 : 0) + (point % order >= order / 2 ? 1 : 0);
+      ++point;
       quarter_w[part] += q.weight;
       if (dot(q.position - sj.shape.v[0], sj.normal) <= 0) continue;
       const double f = q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
       unoccluded[c] += f;
       quarter[part] += f;
     }
-    if (order >= 2 && order % 2 == 0 && unoccluded[c] > 0 && area[c] > 0)
+    if (quarters && unoccluded[c] > 0 && area[c] > 0)
       for (int part = 0; part < 4; ++part)
         if (quarter_w[part] > 0)
           inner = std::max(inner, std::fabs(quarter[part] / quarter_w[part] - unoccluded[c] / area[c]));

@@ -52,12 +52,13 @@ class PointGrid {
     return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)), int64_t(std::floor(p.z / cell_))};
   }
   void add(const Vec3& p, uint32_t id) { cells_[key(p)].push_back(id); }
-  // The 27 cells around p's, appended to keys.
-  void keys_around(const Vec3& p, std::vector<CellKey>& keys) const {
+  // The 27 cells around p's (a point's neighbours within the cell size lie in them).
+  template <class F>
+  void each_key_around(const Vec3& p, F&& visit) const {
     const CellKey k = key(p);
     for (int64_t dz = -1; dz <= 1; ++dz)
       for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx) keys.push_back({k.x + dx, k.y + dy, k.z + dz});
+        for (int64_t dx = -1; dx <= 1; ++dx) visit(CellKey{k.x + dx, k.y + dy, k.z + dz});
   }
   const std::vector<uint32_t>& in(const CellKey& k) const {
     static const std::vector<uint32_t> none;
@@ -66,14 +67,9 @@ class PointGrid {
   }
   template <class F>
   void around(const Vec3& p, F&& visit) const {
-    const CellKey k = key(p);
-    for (int64_t dz = -1; dz <= 1; ++dz)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx) {
-          const auto it = cells_.find({k.x + dx, k.y + dy, k.z + dz});
-          if (it != cells_.end())
-            for (uint32_t id : it->second) visit(id);
-        }
+    each_key_around(p, [&](const CellKey& k) {
+      for (uint32_t id : in(k)) visit(id);
+    });
   }
 
  private:
@@ -139,7 +135,8 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
         const double len2 = dot(d, d), len = std::sqrt(len2);
         const int steps = int(std::ceil(len / cell));
         keys.clear();
-        for (int s = 0; s <= steps; ++s) grid.keys_around(p + d * (double(s) / std::max(steps, 1)), keys);
+        for (int s = 0; s <= steps; ++s)
+          grid.each_key_around(p + d * (double(s) / std::max(steps, 1)), [&](const CellKey& cell_key) { keys.push_back(cell_key); });
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
         on_edge.clear();
@@ -197,9 +194,9 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // A gathered vertex is read once, by the first face that has it, kInward of the way towards its
   // faces' mean centre (off a crease's neighbouring plane; on the vertex where faces surround it):
   // there every element source is taken at the point (point_radiosity.h), so its faces' readings
-  // differ only by their leaves' coarser parts, and reading it from each face took 3.5 evaluations a
-  // vertex. The Cornell box (medium): mesh phase 0.60x, 1.031 -> 1.033% weighted RMS; lamp-room
-  // 1.253 -> 1.252%; test ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
+  // differ only by their leaves' coarser parts, each for a whole reading. The Cornell box (medium):
+  // mesh phase 1.20 -> 0.79 s, 1.031 -> 1.033% weighted RMS; lamp-room 1.253 -> 1.252%; test
+  // ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
   // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
   std::vector<uint32_t> slot_point, slot_group, slot_next, face_slots(boundary.size());
   std::vector<uint32_t> first_slot(points.size(), UINT32_MAX);
@@ -225,17 +222,17 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     for (size_t i = 0; i < faces.size(); ++i)
       if ((face_seen[i] = gather.seen(i)))
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) gathered[face_slots[j]] = 1;
-  std::vector<Vec3> value(boundary.size()), centre_value(faces.size());
+  std::vector<Vec3> value(boundary.size()), centre_value(faces.size()), centre(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) centre[i] = polygon_centroid(faces[i].shape);
   std::vector<uint32_t> reader(gathering ? slots : 0, UINT32_MAX);  // a gathered slot's reading: its first face's corner
   std::vector<Vec3> toward(gathering ? slots : 0);                  // and its faces' mean centre
   if (gathering) {
     std::vector<uint32_t> around(slots, 0);
     for (size_t i = 0; i < faces.size(); ++i) {
-      const Vec3 c = polygon_centroid(faces[i].shape);
       for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
         const uint32_t s = face_slots[j];
         if (reader[s] == UINT32_MAX) reader[s] = j;
-        toward[s] += c;
+        toward[s] += centre[i];
         ++around[s];
       }
     }
@@ -248,7 +245,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
         [&](size_t first, size_t last) {
           tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i != r.end(); ++i) {
-              const Vec3 c = polygon_centroid(faces[i].shape);
+              const Vec3& c = centre[i];
               const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
               if (fanned) {
                 const bool seen = gathering && face_seen[i];
@@ -324,7 +321,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
       if (count == 4) mesh.indices.insert(mesh.indices.end(), {v[0], v[2], v[3]});
     } else {
       const uint32_t c = uint32_t(mesh.vertex_count());
-      append_vertex(mesh, polygon_centroid(f.shape), f.normal, at ? centre_value[i] : f.radiosity, exposure);
+      append_vertex(mesh, centre[i], f.normal, at ? centre_value[i] : f.radiosity, exposure);
       for (uint32_t j = 0; j < count; ++j) mesh.indices.insert(mesh.indices.end(), {c, v[j], v[(j + 1) % count]});
     }
     surface.triangle_polygon.resize(mesh.triangle_count(), f.polygon);

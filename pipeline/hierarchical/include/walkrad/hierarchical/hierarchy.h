@@ -35,7 +35,7 @@ struct Link {
   uint8_t rays = 0;  // 1: visibility by Embree rays (something can block), 2: through volumes (Pending's flags)
   // How unevenly the unoccluded kernel falls inside the receiver's children: the largest departure of
   // a quarter of a child from that child's mean, in 64ths of F (an element receiver's quadrature points
-  // grouped by quarter; 0 where there are too few). The shares say how the children differ; a transfer
+  // grouped by quarter, for an emitting source; else 0). The shares say how the children differ; a transfer
   // that peaks inside each child they miss (error_estimate.cpp). In the padding: Link stays 48 bytes.
   uint8_t inner = 0;
   uint16_t samples = 0;  // the rays (or Monte Carlo samples) it was evaluated with
