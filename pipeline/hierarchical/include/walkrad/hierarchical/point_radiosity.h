@@ -49,14 +49,14 @@ class ClusterGather {
   // which its bottom element, 7.5 cm tall, averages with brighter ones above). For every leaf element
   // that is a close source (its centre within 2 of its radii, plus the leaf's, of the leaf's centre) of
   // one of `leaves`' links or under such a source, and at least twice the leaf's size, its
-  // kPartSide² parts and how their radiosity, evaluated at their centres (LeafRadiosity::at, without
-  // these parts), departs from the leaf's mean: LeafRadiosity then takes such a source part by part.
+  // kPartSide² parts and their radiosity, evaluated at their centres (LeafRadiosity::at, without these
+  // parts), as a ratio to the leaf's solved mean: LeafRadiosity then takes such a source part by part.
   // In parallel over the sources; the result depends on no thread count.
   void resolve_close_sources(const std::vector<uint32_t>& leaves);
   static constexpr int kPartSide = 4;
   struct SourceParts {
     std::array<Polygon, kPartSide * kPartSide> shape;
-    std::array<float, kPartSide * kPartSide> ratio;  // the part's radiosity over the leaf's mean
+    std::array<float, kPartSide * kPartSide> ratio;  // the part's point radiosity over the leaf's solved mean
   };
   const SourceParts* parts(uint32_t node) const {
     return node < part_slot_.size() && part_slot_[node] >= 0 ? &parts_[size_t(part_slot_[node])] : nullptr;
