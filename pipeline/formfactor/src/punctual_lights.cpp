@@ -40,7 +40,7 @@ Vec3 punctual_power(const PunctualLight& light) {
 }
 
 Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
-                      uint64_t& rays_cast) {
+                      uint64_t& rays_cast, const Vec3* origin) {
   Vec3 e;
   for (const PunctualLight& l : lights) {
     const Vec3 d = l.position - x;
@@ -54,7 +54,7 @@ Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<Punct
     if (falloff <= 0) continue;
     if (rays) {
       ++rays_cast;
-      if (rays->occluded(x + normal * rays->offset(), l.position)) continue;
+      if (rays->occluded(origin ? *origin : x + normal * rays->offset(), l.position)) continue;
     }
     e += l.intensity * (cosine * falloff / r2);
   }

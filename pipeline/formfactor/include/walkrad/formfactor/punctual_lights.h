@@ -30,8 +30,10 @@ double range_window(const PunctualLight& light, double r);
 Vec3 punctual_power(const PunctualLight& light);
 
 // Irradiance at a surface point from every light; rays: occluders (nullptr: none). rays_cast counts.
+// The shadow rays leave from origin when given (a point at a polygon's edge lies on its neighbour's
+// plane: the caller moves it in), else from x lifted off its surface.
 Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
-                      uint64_t& rays_cast);
+                      uint64_t& rays_cast, const Vec3* origin = nullptr);
 
 struct DirectIrradiance {
   Vec3 mean;           // W/m², over the polygon
