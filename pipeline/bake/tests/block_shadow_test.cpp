@@ -32,11 +32,7 @@ TEST(BlockShadow, FloorInFrontOfTheShortBlockAgreesWithTheReference) {
       at.push_back({floor, a + (b - a) * t + out * d});
       up.push_back({0, 1, 0});
     }
-  ReferenceSettings rs;
-  rs.samples = 16384;
-  uint64_t cast = 0;
-  const std::vector<RadiosityEstimate> ref = baked.tracer.estimate(at, rs, cast);
-  const test::ReferenceComparison c = test::compare_with_reference(baked.sampler, at, up, 0.01, ref);
+  const test::ReferenceComparison c = test::compare_with_reference(baked.tracer, baked.sampler, at, up, 0.01, 16384);
   std::printf("floor in front of the short block: RMS %.2f%% (the reference's standard error %.2f%%)\n", 100 * c.rms,
               100 * c.bar);
   EXPECT_LT(c.rms, 0.10);

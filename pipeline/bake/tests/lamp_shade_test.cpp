@@ -69,11 +69,8 @@ TEST(LampShade, TheFloorAtAWallsFootIsLitByTheSpot) {
       at.push_back({test::polygon_at(scene, "floor", {0, 0, 1}, {x, y, 0}), {x, y, 0}});
       up.push_back({0, 0, 1});
     }
-  ReferenceSettings rs;
-  rs.samples = 1 << 20;  // the pool's reference is noisy: about 10% a point at 16,384 paths
-  uint64_t cast = 0;
-  const std::vector<RadiosityEstimate> ref = baked.tracer.estimate(at, rs, cast);
-  const test::ReferenceComparison c = test::compare_with_reference(baked.sampler, at, up, 0.005, ref);
+  // 2^20 paths a point: the pool's reference is noisy, about 10% a point at 16,384.
+  const test::ReferenceComparison c = test::compare_with_reference(baked.tracer, baked.sampler, at, up, 0.005, 1 << 20);
   std::printf("floor beside the wall under the spot: RMS %.2f%% (the reference's standard error %.2f%%)\n", 100 * c.rms,
               100 * c.bar);
   EXPECT_LT(c.rms, 0.03);

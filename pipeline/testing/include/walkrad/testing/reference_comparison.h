@@ -59,4 +59,14 @@ inline ReferenceComparison compare_with_reference(const BakeSampler& sampler, co
   return {std::sqrt(sq / n), std::sqrt(noise / n)};
 }
 
+// The same, the reference traced here with `samples` paths a point.
+inline ReferenceComparison compare_with_reference(const ReferenceTracer& tracer, const BakeSampler& sampler,
+                                                  const std::vector<SurfacePoint>& at, const std::vector<Vec3>& up,
+                                                  double lift, int samples) {
+  ReferenceSettings rs;
+  rs.samples = samples;
+  uint64_t cast = 0;
+  return compare_with_reference(sampler, at, up, lift, tracer.estimate(at, rs, cast));
+}
+
 }  // namespace walkrad::test
