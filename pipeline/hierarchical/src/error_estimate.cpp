@@ -141,7 +141,7 @@ void Solver::measure_variation() {
         const double b = luminance(link_sent(l)) * l.F, g = gather ? reflected_sent(l) * l.F : b;
         H += b;
         G += g;
-        if (max_component(h_[l.source].emission) > 0) inner += b * double(l.inner) / 64.0;
+        inner += b * double(l.inner) / 64.0;  // 0 but from an emitter (evaluate_elements)
         for (uint32_t k = 0; k < kids; ++k) {
           Hc[k] += b * double(l.share[k]);
           Gc[k] += g * double(l.share[k]);

@@ -126,22 +126,26 @@ TEST(Hierarchical, AWallUnderAGrazingLampKeepsItsProfileAtACoarseError) {
   if (polygon_normal(lamp).y > 0) std::swap(lamp.v[1], lamp.v[3]);  // emits downwards
   s.polygons.push_back(lamp);
   const ClusterTree tree = build_cluster_tree(s);
-  Hierarchy h(s, tree);
   const RayScene rays(s);
-  HierarchicalSettings settings;
-  settings.error = 0.2;  // medium: the default (0.1) refines the walls for their own sake
-  HierarchicalStats stats;
-  solve_hierarchical(h, rays, settings, stats);
-  double top = 0, top_area = 0, middle = 0, middle_area = 0;  // the four walls' leaves, by their centres
-  for (const HNode& n : h.nodes()) {
-    if (n.cluster || n.child_count || n.polygon < 2 || n.polygon > 5) continue;
-    if (n.center.y > 3.0) top += luminance(n.B) * n.area, top_area += n.area;
-    else if (n.center.y > 2.0) middle += luminance(n.B) * n.area, middle_area += n.area;
+  // The default a user gets (0.0441 against 0.0625) and medium, the setting that flattened the walls
+  // before Link::inner (0.0442 against 0.0628).
+  for (const double error : {HierarchicalSettings{}.error, 0.2}) {
+    Hierarchy h(s, tree);
+    HierarchicalSettings settings;
+    settings.error = error;
+    HierarchicalStats stats;
+    solve_hierarchical(h, rays, settings, stats);
+    double top = 0, top_area = 0, middle = 0, middle_area = 0;  // the four walls' leaves, by their centres
+    for (const HNode& n : h.nodes()) {
+      if (n.cluster || n.child_count || n.polygon < 2 || n.polygon > 5) continue;
+      if (n.center.y > 3.0) top += luminance(n.B) * n.area, top_area += n.area;
+      else if (n.center.y > 2.0) middle += luminance(n.B) * n.area, middle_area += n.area;
+    }
+    ASSERT_GT(top_area, 0);
+    ASSERT_GT(middle_area, 0);
+    std::printf("--error %.2f: walls' top metre %.4f, 2-3 m %.4f\n", error, top / top_area, middle / middle_area);
+    EXPECT_LT(top / top_area, 0.9 * middle / middle_area) << "--error " << error;
   }
-  ASSERT_GT(top_area, 0);
-  ASSERT_GT(middle_area, 0);
-  std::printf("walls: top metre %.4f, 2-3 m %.4f\n", top / top_area, middle / middle_area);
-  EXPECT_LT(top / top_area, 0.9 * middle / middle_area);
 }
 
 // Push-pull: at every node, A·B equals the sum of A·B of its children (so every level of the

@@ -194,7 +194,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // A gathered vertex is read once, by the first face that has it, kInward of the way towards its
   // faces' mean centre (off a crease's neighbouring plane; on the vertex where faces surround it):
   // there every element source is taken at the point (point_radiosity.h), so its faces' readings
-  // differ only by their leaves' coarser parts, each for a whole reading. The Cornell box (medium):
+  // differ only by their leaves' coarser parts, and each reading costs a whole evaluation. The Cornell box (medium):
   // mesh phase 1.20 -> 0.79 s, 1.031 -> 1.033% weighted RMS; lamp-room 1.253 -> 1.252%; test
   // ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
   // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
