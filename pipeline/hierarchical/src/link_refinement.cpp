@@ -28,13 +28,22 @@ double box_distance(const Bounds& a, const Bounds& b) {
   return std::sqrt(d2);
 }
 
-// True when every corner of box lies on or behind the element's plane: it can see nothing there.
-bool behind(const HNode& element, const Bounds& box) {
+// True when every point of the other node lies on or behind the element's plane: the element sees
+// nothing of it. An element other is tested by its corners (a convex polygon lies behind a plane when
+// they do), a cluster by its box's: the boxes of two tilted facets side by side on a convex object
+// (a chair's, a lamp's) reach in front of each other's planes, and the pair was linked, cast its rays
+// and dropped (half of MGF office3's first links, 39% of their rays).
+bool behind(const HNode& element, const HNode& other) {
   const double tol = 1e-9 * (element.radius + 1e-30) + rounding_at(element.center);
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 p(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z);
-    if (dot(p - element.shape.v[0], element.normal) > tol) return false;
+  auto in_front = [&](const Vec3& p) { return dot(p - element.shape.v[0], element.normal) > tol; };
+  if (!other.cluster) {
+    for (int k = 0; k < other.shape.count; ++k)
+      if (in_front(other.shape.v[size_t(k)])) return false;
+    return true;
   }
+  const Bounds& box = other.bounds;
+  for (int c = 0; c < 8; ++c)
+    if (in_front(Vec3(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z))) return false;
   return true;
 }
 
@@ -155,8 +164,8 @@ void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<u
     const HNode& ri = h_[i];
     const HNode& sj = h_[j];
     if (!ri.cluster && !sj.cluster && ri.polygon == sj.polygon) return;  // coplanar
-    if (!ri.cluster && behind(ri, sj.bounds)) return;
-    if (!sj.cluster && behind(sj, ri.bounds)) return;
+    if (!ri.cluster && behind(ri, sj)) return;
+    if (!sj.cluster && behind(sj, ri)) return;
   }
   // A cluster is linked only from far enough away (close_pair): closer, a surface of the cluster may
   // lie centimetres from the other end (a bookcase against a wall), where the point-sampled kernel
