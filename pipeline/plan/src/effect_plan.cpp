@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "walkrad/formats/error.h"
 #include "walkrad/core/sampling.h"
@@ -66,30 +67,62 @@ bool is_convex_enclosure(const Scene& scene) {
 
 namespace {
 
-// Whether point p of polygon `self` (normal n) lies on a polygon that faces the other way in the same
-// plane: the two are pressed together (a table's bottom on the floor) and p sees nothing at all, so a
-// ray from it proves nothing about openings. Polygons are convex (contact_split.h keeps them so).
-// hint: the polygon that matched last (a pressed face's samples all lie on the same one).
-bool pressed(const Scene& scene, size_t self, const Vec3& p, const Vec3& n, double tol, size_t& hint) {
-  const auto covers = [&](size_t j) {
-    const Polygon& q = scene.polygons[j];
-    const Vec3 m = polygon_normal(q);
-    if (j == self || dot(m, n) > -1 + 1e-9 || std::fabs(dot(p - q.v[0], m)) > tol) return false;
-    for (int k = 0; k < q.count; ++k) {
-      const Vec3 a = q.v[k], e = q.v[(k + 1) % q.count] - a;
-      const double len = length(e);
-      if (len > 0 && dot(cross(e, p - a), m) < -tol * len) return false;
+// The polygons pressed against others: for each, those that face the other way in its plane and meet
+// its box (found once a polygon needs them: the closure test asks for few).
+class PressedFaces {
+ public:
+  PressedFaces(const Scene& scene, double tol) : scene_(scene), tol_(tol), found_(scene.polygons.size(), 0), opposite_(scene.polygons.size()) {
+    normals_.reserve(scene.polygons.size());
+    bounds_.reserve(scene.polygons.size());
+    for (const Polygon& p : scene.polygons) {
+      normals_.push_back(polygon_normal(p));
+      Bounds b;
+      for (int k = 0; k < p.count; ++k) b.extend(p.v[k]);
+      bounds_.push_back(b);
     }
-    return true;
-  };
-  if (hint < scene.polygons.size() && covers(hint)) return true;
-  for (size_t j = 0; j < scene.polygons.size(); ++j)
-    if (covers(j)) {
-      hint = j;
-      return true;
+  }
+  const Vec3& normal(size_t i) const { return normals_[i]; }
+
+  // Whether point p of polygon `self` lies on a polygon that faces the other way in the same plane:
+  // the two are pressed together (a table's bottom on the floor) and p sees nothing at all, so a ray
+  // from it proves nothing about openings. Polygons are convex (contact_split.h keeps them so).
+  bool at(size_t self, const Vec3& p) {
+    if (!found_[self]) {
+      found_[self] = 1;
+      const Vec3& n = normals_[self];
+      const Polygon& own = scene_.polygons[self];
+      for (size_t j = 0; j < scene_.polygons.size(); ++j) {
+        const Polygon& q = scene_.polygons[j];
+        if (j == self || dot(normals_[j], n) > -1 + 1e-9 || std::fabs(dot(own.v[0] - q.v[0], normals_[j])) > tol_) continue;
+        bool apart = false;
+        for (int k = 0; k < 3; ++k)
+          apart = apart || bounds_[j].lo[k] > bounds_[self].hi[k] + tol_ || bounds_[j].hi[k] < bounds_[self].lo[k] - tol_;
+        if (!apart) opposite_[self].push_back(uint32_t(j));
+      }
     }
-  return false;
-}
+    for (const uint32_t j : opposite_[self]) {
+      const Polygon& q = scene_.polygons[j];
+      const Vec3& m = normals_[j];
+      if (std::fabs(dot(p - q.v[0], m)) > tol_) continue;
+      bool inside = true;
+      for (int k = 0; k < q.count && inside; ++k) {
+        const Vec3 a = q.v[k], e = q.v[(k + 1) % q.count] - a;
+        const double len = length(e);
+        inside = !(len > 0 && dot(cross(e, p - a), m) < -tol_ * len);
+      }
+      if (inside) return true;
+    }
+    return false;
+  }
+
+ private:
+  const Scene& scene_;
+  double tol_;
+  std::vector<Vec3> normals_;
+  std::vector<Bounds> bounds_;
+  std::vector<uint8_t> found_;
+  std::vector<std::vector<uint32_t>> opposite_;
+};
 
 }  // namespace
 
@@ -106,14 +139,18 @@ std::vector<int> channels_without_absorption(const Scene& scene) {
   return channels;
 }
 
-bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples) {
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples, double* back_share) {
   const size_t n = scene.polygons.size();
   const double tol = 1e-6 * length(scene.bounds().diagonal());  // contact_split's default
-  size_t hint = SIZE_MAX;
+  PressedFaces pressed(scene, tol);
   const size_t per = std::clamp<size_t>(65536 / std::max<size_t>(n, 1), 1, 64);
+  double total = 0, lost = 0;
+  for (const Polygon& p : scene.polygons) total += polygon_area(p);
+  if (back_share) *back_share = 0;
   for (size_t i = 0; i < n; ++i) {
     const Polygon& p = scene.polygons[i];
-    const Vec3 normal = polygon_normal(p);
+    const Vec3 normal = pressed.normal(i);
+    const double share = polygon_area(p) / double(per);  // of the area, each ray from p
     // A frame around the normal for cosine-weighted directions.
     const Vec3 t = normalize(cross(std::fabs(normal.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), normal));
     const Vec3 b = cross(normal, t);
@@ -124,9 +161,17 @@ bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, ui
       const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
       const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - r * r));
       ++rays_cast;
-      if (rays.intersect(origin, d).hit) continue;
-      if (!pressed(scene, i, origin - normal * rays.offset(), normal, tol, hint)) return false;
-      ++pressed_samples;
+      const RayScene::Hit hit = rays.intersect(origin, d);
+      if (hit.hit && dot(d, pressed.normal(hit.polygon)) <= 0) continue;  // a front face: the light stays
+      if (pressed.at(i, origin - normal * rays.offset())) {
+        ++pressed_samples;
+        continue;
+      }
+      if (!hit.hit) return false;
+      // A back face (none coincident in front of it: RayScene::intersect) absorbs what reaches it.
+      lost += share;
+      if (back_share) *back_share = total > 0 ? lost / total : 0.0;
+      if (lost > kClosedBackShare * total) return false;
     }
   }
   return n > 0;
@@ -176,7 +221,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.clusters.reason = plan.clusters.on ? "hierarchical method: groups of polygons exchange light through cluster links"
                                           : "classic method: element to element only";
   uint64_t closure_rays = 0, pressed_samples = 0;
-  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples);
+  double back_share = 0;
+  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples, &back_share);
   // Closed, the leaves' row and column sums could be balanced to 1 (link_transport.h). Off unless asked
   // for: with clusters pushing by direction and links by their shares, the row sums stay near 1, and
   // the balance, its factors bounded, no longer converged on office-floor, made it less accurate
@@ -185,10 +231,19 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.closed = closed;
   const std::string pressed_note =
       pressed_samples > 0 ? ", but for " + std::to_string(pressed_samples) + " from faces pressed against others" : "";
+  const auto percent = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f%%", 100 * x);
+    return std::string(text);
+  };
+  const std::string back_note = back_share > 0 ? ", " + percent(back_share) + " of the area's rays meet a back face" : "";
   plan.closure.reason = method != "hierarchical" ? "classic method: its uniform elements' row sums need no correction"
                         : closed ? "closed: no ray from any surface escapes (" + std::to_string(closure_rays) + " rays" +
-                                       pressed_note + "); each leaf's row sum scaled to 1 (--effect closure=on balances rows and sends)"
-                                 : "rays escape the scene: row sums are left as computed";
+                                       pressed_note + back_note + "); each leaf's row sum scaled to 1 (--effect closure=on balances rows and sends)"
+                        : back_share > kClosedBackShare
+                            ? "over " + percent(kClosedBackShare) + " of the rays from the surfaces (by area) meet a back face, "
+                              "which absorbs what reaches it: row sums are left as computed"
+                            : "rays escape the scene: row sums are left as computed";
   apply_override(plan.indirect, "indirect", overrides);
   apply_override(plan.closure, "closure", overrides);
   apply_override(plan.visibility, "visibility", overrides);
