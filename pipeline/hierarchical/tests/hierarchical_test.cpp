@@ -170,7 +170,9 @@ TEST(Hierarchical, TheFacesOfAConvexObjectAreNotLinked) {
   EXPECT_EQ(cube.stats.rays, 0u);
   EXPECT_EQ(cube.stats.exact_links + cube.stats.unoccluded_links + cube.stats.monte_carlo_links, 0u);  // none evaluated
   for (const HNode& n : cube.h.nodes())
-    if (!n.cluster && !n.child_count) EXPECT_EQ(n.B.x, 1.0);  // B = E: nothing reaches it
+    if (!n.cluster && !n.child_count) {
+      EXPECT_EQ(n.B.x, 1.0);  // B = E: nothing reaches it
+    }
 
   Scene trough;
   trough.source = "trough";
