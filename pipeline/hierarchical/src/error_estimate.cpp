@@ -18,6 +18,7 @@
 
 #include "walkrad/core/rounding.h"
 #include "walkrad/formfactor/form_factor.h"
+#include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad::hierarchical_detail {
@@ -110,6 +111,18 @@ double Solver::reflected_sent(uint32_t source) const {
   while (j >= emitted_.size() && h_[j].parent >= 0) j = uint32_t(h_[j].parent);
   const double all = luminance(sent(h_[source]));
   return j < emitted_.size() ? std::max(0.0, all - double(emitted_[j])) : all;
+}
+
+Vec3 Solver::sent_to(const HNode& n, const Link& l) const {
+  const HNode& source = h_[l.source];
+  if (!source.cluster || facing_bt_.size() <= l.source) return has_seen(l) ? link_sent(l) : sent(source);
+  if (!has_seen(l)) return radiosity_towards(source, facing_bt_[l.source], normalize(n.center - source.center), sent(source));
+  Vec3 b;  // each part towards the receiver from its own centre, as the transport walk takes it
+  for_each_part(h_, l, [&](uint32_t part, double w) {
+    const HNode& p = h_[part];
+    b += (part < facing_bt_.size() ? radiosity_towards(p, facing_bt_[part], normalize(n.center - p.center), sent(p)) : sent(p)) * w;
+  });
+  return b;
 }
 
 Vec3 Solver::link_sent(const Link& l) const {

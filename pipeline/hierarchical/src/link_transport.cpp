@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 
 namespace walkrad {
@@ -53,7 +54,7 @@ std::vector<double> path_sums(const Hierarchy& h, const std::vector<double>& per
 // What reaches every element along its ancestors' links, as the solve pushes it (solve_sweep.cpp):
 // a cluster's transfers by direction (directional_irradiance.h), taken by the first element below it
 // by its normal; an element's split among its children by their shares (Link::share); a leaf element
-// adds its own links'. H: Σ F · value(source), for N quantities at once (value returns N of them:
+// adds its own links'. H: Σ F · value(source, receiver), for N quantities at once (value returns N of them:
 // one walk over the links for all; each sum in the order a single one would take); row: Σ F.
 // Parents come first in the node array.
 template <size_t N>
@@ -64,10 +65,10 @@ struct Delivery {
 
 // What a link with Link::seen takes from its source's parts, as the solve takes it.
 template <size_t N, class V>
-std::array<Vec3, N> seen_value(const Hierarchy& h, const Link& l, V& value) {
+std::array<Vec3, N> seen_value(const Hierarchy& h, const Link& l, const HNode& receiver, V& value) {
   std::array<Vec3, N> out{};
   for_each_part(h, l, [&](uint32_t node, double w) {
-    const std::array<Vec3, N> v = value(node);
+    const std::array<Vec3, N> v = value(node, receiver);
     for (size_t m = 0; m < N; ++m) out[m] += v[m] * w;
   });
   return out;
@@ -87,7 +88,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
     if (n.parent >= 0) cube[k] = cube[size_t(n.parent)];
     for (const Link& l : n.links) {
       const Vec3 u = link_direction(n, h[l.source]);
-      const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, value) : value(l.source);
+      const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
       for (size_t m = 0; m < N; ++m) cube[k][m].add(n, u, l.F, v[m]);
     }
   }
@@ -117,7 +118,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
         const HNode& n = nodes[it.node];
         if (n.child_count == 0)
           for (const Link& l : n.links) {
-            const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, value) : value(l.source);
+            const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
             for (size_t m = 0; m < N; ++m) it.H[m] += v[m] * l.F;
             it.row += l.F;
           }
@@ -128,7 +129,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
         std::array<Item, 4> child;
         for (uint32_t c = 0; c < kids; ++c) child[c] = {h.child(n, c), it.H, it.row};
         for (const Link& l : n.links) {
-          const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, value) : value(l.source);
+          const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
           for (uint32_t c = 0; c < kids; ++c) {
             const double f = l.F * double(l.share[c]);
             for (size_t m = 0; m < N; ++m) child[c].H[m] += v[m] * f;
@@ -168,7 +169,21 @@ std::array<std::vector<Vec3>, N> transport(const Hierarchy& h, const std::array<
     for (size_t m = 0; m < N; ++m) r.v[m] = (*x[m])[k] * n.send;
     return r;
   });
-  const Delivery<N> d = delivered<N>(h, [&](uint32_t source) { return sent[source].v; });
+  // A cluster sends by direction (cluster_radiosity.h), as the solve's gather takes it.
+  std::array<std::vector<std::array<Vec3, 6>>, N> facing;
+  for (size_t m = 0; m < N; ++m) {
+    std::vector<Vec3> value(nodes.size());
+    for (size_t k = 0; k < nodes.size(); ++k) value[k] = sent[k].v[m];
+    facing[m] = facing_radiosity(h, value);
+  }
+  const Delivery<N> d = delivered<N>(h, [&](uint32_t source, const HNode& receiver) {
+    const HNode& s = nodes[source];
+    if (!s.cluster) return sent[source].v;
+    const Vec3 u = normalize(receiver.center - s.center);
+    std::array<Vec3, N> v;
+    for (size_t m = 0; m < N; ++m) v[m] = radiosity_towards(s, facing[m][source], u, sent[source].v[m]);
+    return v;
+  });
   std::array<std::vector<Vec3>, N> out;
   for (size_t m = 0; m < N; ++m) {
     out[m].assign(nodes.size(), Vec3{});
@@ -183,7 +198,7 @@ template <class F>
 std::vector<double> row_sums(const Hierarchy& h, F send) {
   std::vector<double> mean;
   area_means(h, mean, [&](const HNode& n, size_t) { return send(n); });
-  const Delivery<1> d = delivered<1>(h, [&](uint32_t source) {
+  const Delivery<1> d = delivered<1>(h, [&](uint32_t source, const HNode&) {
     return std::array<Vec3, 1>{Vec3(mean[source], mean[source], mean[source])};
   });
   std::vector<double> out(d.H.size());

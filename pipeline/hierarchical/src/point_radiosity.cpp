@@ -7,6 +7,7 @@
 
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/formfactor/punctual_lights.h"
+#include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/transmission.h"
@@ -46,6 +47,15 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
     : h_(h), indirect_(indirect), lights_(lights && !lights->empty() ? lights : nullptr), rays_(rays),
       H_(h.scene().polygons.size()), Hg_(h.scene().polygons.size()), row_(h.scene().polygons.size(), 0.0),
       emitted_(emitted_as_sent(h)) {
+  if (indirect_) {  // clusters send by direction (cluster_radiosity.h), as the solve took them
+    std::vector<Vec3> all(h.nodes().size()), reflected(h.nodes().size());
+    for (uint32_t k = 0; k < h.nodes().size(); ++k) {
+      all[k] = h[k].Bt;
+      reflected[k] = h[k].Bt - emitted_[k];
+    }
+    facing_ = facing_radiosity(h, all);
+    facing_g_ = facing_radiosity(h, reflected);
+  }
   // Down the cluster tree, each cluster's links added to its parent's, by direction.
   std::vector<DirectionalIrradiance> cube, cube_g;
   std::vector<uint32_t> slot(h.nodes().size(), UINT32_MAX);
@@ -58,8 +68,8 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
       cube_g.push_back(parent >= 0 ? cube_g[slot[size_t(parent)]] : DirectionalIrradiance{});
       for (const Link& l : n.links) {
         const Vec3 u = link_direction(n, h[l.source]);
-        cube.back().add(n, u, l.F, sent(l, false));
-        cube_g.back().add(n, u, l.F, sent(l, true));
+        cube.back().add(n, u, l.F, sent(l, false, n.center));
+        cube_g.back().add(n, u, l.F, sent(l, true, n.center));
       }
     } else if (n.depth == 0 && parent >= 0) {
       const uint32_t c = slot[size_t(parent)];
@@ -74,6 +84,18 @@ Vec3 ClusterGather::sent(uint32_t node, bool gathered) const {
   const HNode& s = h_[node];
   if (!indirect_) return gathered ? Vec3{} : s.emission;
   return gathered ? s.Bt - emitted_[node] : s.Bt;
+}
+
+Vec3 ClusterGather::sent(const Link& l, bool gathered, const Vec3& receiver) const {
+  if (facing_.empty() || !h_[l.source].cluster) return sent(l, gathered);
+  const std::vector<std::array<Vec3, 6>>& facing = gathered ? facing_g_ : facing_;
+  if (!has_seen(l))
+    return radiosity_towards(h_[l.source], facing[l.source], normalize(receiver - h_[l.source].center), sent(l.source, gathered));
+  Vec3 out;  // each part from its own centre, as the solve took it
+  for_each_part(h_, l, [&](uint32_t node, double w) {
+    out += radiosity_towards(h_[node], facing[node], normalize(receiver - h_[node].center), sent(node, gathered)) * w;
+  });
+  return out;
 }
 
 Vec3 ClusterGather::sent(const Link& l, bool gathered) const {
@@ -189,7 +211,7 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint3
     const uint32_t slot = own ? 0 : child_slot(h, below);
     for (const Link& l : r.links) {
       const HNode& s = h[l.source];
-      const Vec3 sent = clusters.sent(l, false), reflected = clusters.sent(l, true);
+      const Vec3 sent = clusters.sent(l, false, r.center), reflected = clusters.sent(l, true, r.center);
       // A source element near the receiver: the point's own form factor (the kernel changes within a
       // share's quadrant there; farther, the shares say enough). At a gathered vertex every element
       // source is taken at the point: the gather is what the walkthrough sees, and a quadrant's share

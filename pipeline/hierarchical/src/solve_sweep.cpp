@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/link_transport.h"
 
@@ -15,6 +16,11 @@ namespace walkrad::hierarchical_detail {
 
 double Solver::solve_sweep(IterationStats& is) {
   std::vector<HNode>& nodes = h_.nodes();
+  if (s_.indirect) {  // what each cluster sends by direction, from the last sweep's radiosity
+    std::vector<Vec3> bt(nodes.size());
+    for (size_t k = 0; k < nodes.size(); ++k) bt[k] = nodes[k].Bt;
+    facing_bt_ = facing_radiosity(h_, bt);
+  }
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i)
       if (!s_.gauss_seidel || nodes[i].cluster) gather(nodes[i]);
@@ -48,7 +54,7 @@ void Solver::gather(HNode& n) {
   double f = 0;
   for (const Link& l : n.links) {
     const HNode& source = h_[l.source];
-    const Vec3 b = has_seen(l) ? link_sent(l) : sent(source);
+    const Vec3 b = sent_to(n, l);
     H += b * l.F;
     f += l.F;
     if (cube) cube->add(n, link_direction(n, source), l.F, b);

@@ -297,6 +297,11 @@ class Solver {
   void gather(HNode& n);
 
   void gather_subtree(uint32_t i);
+  // Each cluster's Bt by the way its surfaces face (cluster_radiosity.h), set at each sweep's start.
+  std::vector<std::array<Vec3, 6>> facing_bt_;
+  // What link l of receiver n takes from its source this sweep: a cluster source's radiosity towards n
+  // (its parts' where the link saw them unevenly: Link::seen), an element's Bt.
+  Vec3 sent_to(const HNode& n, const Link& l) const;
   std::vector<uint32_t> subtree_scratch_;  // gather_subtree's nodes
 
   // down, down_sum: what the element ancestors' links push here; cube: what the cluster ancestors'

@@ -19,6 +19,7 @@
 #include "walkrad/bake/bake.h"
 #include "walkrad/scene/cluster_tree.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
+#include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/hierarchy.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/core/progress.h"
@@ -196,6 +197,29 @@ TEST(Hierarchical, TheFacesOfAConvexObjectAreNotLinked) {
     }
   EXPECT_GT(power / area, 1.0 + 0.5 * 0.2000438 * 0.999);
   EXPECT_LT(power / area, 1.12);
+}
+
+// A cluster sends by direction what its surfaces facing that way send (cluster_radiosity.h): a cube
+// whose +x face alone is bright sends its radiosity towards +x, nothing towards −x, half of it along
+// the diagonal between +x and +y; its area mean (a sixth) was what every direction got.
+TEST(ClusterRadiosity, ACubeSendsWhatItsFacingSurfacesSend) {
+  Scene scene;
+  scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
+  test::add_cube(scene, {0, 0, 0}, 1.0);
+  const ClusterTree tree = build_cluster_tree(scene);
+  const Hierarchy h(scene, tree);
+  std::vector<Vec3> value(h.nodes().size());
+  for (uint32_t k = 0; k < h.nodes().size(); ++k)
+    if (!h[k].cluster && h[k].normal.x > 0.5) value[k] = Vec3(6, 6, 6);
+  const std::vector<std::array<Vec3, 6>> facing = facing_radiosity(h, value);
+  const HNode& root = h[h.root()];
+  ASSERT_TRUE(root.cluster);
+  const Vec3 mean(1, 1, 1);
+  EXPECT_NEAR(radiosity_towards(root, facing[h.root()], {1, 0, 0}, mean).x, 6.0, 1e-6);
+  EXPECT_NEAR(radiosity_towards(root, facing[h.root()], {-1, 0, 0}, mean).x, 0.0, 1e-6);
+  EXPECT_NEAR(radiosity_towards(root, facing[h.root()], normalize(Vec3(1, 1, 0)), mean).x, 3.0, 1e-6);
+  const uint32_t element = h.polygon_root(0);
+  EXPECT_EQ(radiosity_towards(h[element], facing[element], {1, 0, 0}, mean).x, 1.0);  // an element: its own
 }
 
 // Push-pull: at every node, A·B equals the sum of A·B of its children (so every level of the
