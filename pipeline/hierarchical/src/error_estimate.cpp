@@ -114,15 +114,7 @@ double Solver::reflected_sent(uint32_t source) const {
 }
 
 Vec3 Solver::sent_to(const HNode& n, const Link& l) const {
-  const HNode& source = h_[l.source];
-  if (!source.cluster || facing_bt_.size() <= l.source) return has_seen(l) ? link_sent(l) : sent(source);
-  if (!has_seen(l)) return radiosity_towards(source, facing_bt_[l.source], normalize(n.center - source.center), sent(source));
-  Vec3 b;  // each part towards the receiver from its own centre, as the transport walk takes it
-  for_each_part(h_, l, [&](uint32_t part, double w) {
-    const HNode& p = h_[part];
-    b += (part < facing_bt_.size() ? radiosity_towards(p, facing_bt_[part], normalize(n.center - p.center), sent(p)) : sent(p)) * w;
-  });
-  return b;
+  return link_radiosity_towards(h_, l, n.center, facing_bt_, [&](uint32_t node) { return sent(h_[node]); });
 }
 
 Vec3 Solver::link_sent(const Link& l) const {

@@ -171,11 +171,7 @@ std::array<std::vector<Vec3>, N> transport(const Hierarchy& h, const std::array<
   });
   // A cluster sends by direction (cluster_radiosity.h), as the solve's gather takes it.
   std::array<std::vector<std::array<Vec3, 6>>, N> facing;
-  for (size_t m = 0; m < N; ++m) {
-    std::vector<Vec3> value(nodes.size());
-    for (size_t k = 0; k < nodes.size(); ++k) value[k] = sent[k].v[m];
-    facing[m] = facing_radiosity(h, value);
-  }
+  for (size_t m = 0; m < N; ++m) facing[m] = facing_radiosity(h, [&](uint32_t k) { return sent[k].v[m]; });
   const Delivery<N> d = delivered<N>(h, [&](uint32_t source, const HNode& receiver) {
     const HNode& s = nodes[source];
     if (!s.cluster) return sent[source].v;

@@ -48,13 +48,8 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
       H_(h.scene().polygons.size()), Hg_(h.scene().polygons.size()), row_(h.scene().polygons.size(), 0.0),
       emitted_(emitted_as_sent(h)) {
   if (indirect_) {  // clusters send by direction (cluster_radiosity.h), as the solve took them
-    std::vector<Vec3> all(h.nodes().size()), reflected(h.nodes().size());
-    for (uint32_t k = 0; k < h.nodes().size(); ++k) {
-      all[k] = h[k].Bt;
-      reflected[k] = h[k].Bt - emitted_[k];
-    }
-    facing_ = facing_radiosity(h, all);
-    facing_g_ = facing_radiosity(h, reflected);
+    facing_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt; });
+    facing_g_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt - emitted_[k]; });
   }
   // Down the cluster tree, each cluster's links added to its parent's, by direction.
   std::vector<DirectionalIrradiance> cube, cube_g;
@@ -87,22 +82,8 @@ Vec3 ClusterGather::sent(uint32_t node, bool gathered) const {
 }
 
 Vec3 ClusterGather::sent(const Link& l, bool gathered, const Vec3& receiver) const {
-  if (facing_.empty() || !h_[l.source].cluster) return sent(l, gathered);
-  const std::vector<std::array<Vec3, 6>>& facing = gathered ? facing_g_ : facing_;
-  if (!has_seen(l))
-    return radiosity_towards(h_[l.source], facing[l.source], normalize(receiver - h_[l.source].center), sent(l.source, gathered));
-  Vec3 out;  // each part from its own centre, as the solve took it
-  for_each_part(h_, l, [&](uint32_t node, double w) {
-    out += radiosity_towards(h_[node], facing[node], normalize(receiver - h_[node].center), sent(node, gathered)) * w;
-  });
-  return out;
-}
-
-Vec3 ClusterGather::sent(const Link& l, bool gathered) const {
-  if (!has_seen(l)) return sent(l.source, gathered);
-  Vec3 out;
-  for_each_part(h_, l, [&](uint32_t node, double w) { out += sent(node, gathered) * w; });
-  return out;
+  return link_radiosity_towards(h_, l, receiver, gathered ? facing_g_ : facing_,
+                                [&](uint32_t node) { return sent(node, gathered); });
 }
 
 void ClusterGather::resolve_close_sources(const std::vector<uint32_t>& leaves) {

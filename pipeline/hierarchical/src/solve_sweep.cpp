@@ -16,11 +16,8 @@ namespace walkrad::hierarchical_detail {
 
 double Solver::solve_sweep(IterationStats& is) {
   std::vector<HNode>& nodes = h_.nodes();
-  if (s_.indirect) {  // what each cluster sends by direction, from the last sweep's radiosity
-    std::vector<Vec3> bt(nodes.size());
-    for (size_t k = 0; k < nodes.size(); ++k) bt[k] = nodes[k].Bt;
-    facing_bt_ = facing_radiosity(h_, bt);
-  }
+  if (s_.indirect)  // what each cluster sends by direction, from the last sweep's radiosity
+    facing_bt_ = facing_radiosity(h_, [&](uint32_t k) { return nodes[k].Bt; });
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i)
       if (!s_.gauss_seidel || nodes[i].cluster) gather(nodes[i]);

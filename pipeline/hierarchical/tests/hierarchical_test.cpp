@@ -102,8 +102,7 @@ TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
 
 INSTANTIATE_TEST_SUITE_P(Reflectances, HierarchicalFurnace, ::testing::Values(0.5, 0.9, 0.99));
 
-// The Cornell box's hierarchy solved with the default settings (`before` runs first: view hits).
-// A scene solved at the default settings (before: a change to the hierarchy first).
+// A scene solved at the default settings (`before` runs first: view hits, for instance).
 struct Solved {
   explicit Solved(Scene s, const std::function<void(Hierarchy&, const Scene&)>& before = {}) : scene(std::move(s)) {
     if (before) before(h, scene);
@@ -116,6 +115,7 @@ struct Solved {
   HierarchicalStats stats;
 };
 
+// The Cornell box's hierarchy, so solved.
 struct SolvedCornell : Solved {
   explicit SolvedCornell(const std::function<void(Hierarchy&, const Scene&)>& before = {}) : Solved(read_scene(kCornell), before) {}
 };
@@ -211,15 +211,15 @@ TEST(ClusterRadiosity, ACubeSendsWhatItsFacingSurfacesSend) {
   std::vector<Vec3> value(h.nodes().size());
   for (uint32_t k = 0; k < h.nodes().size(); ++k)
     if (!h[k].cluster && h[k].normal.x > 0.5) value[k] = Vec3(6, 6, 6);
-  const std::vector<std::array<Vec3, 6>> facing = facing_radiosity(h, value);
+  const std::vector<std::array<Vec3, 6>> facing = facing_radiosity(h, [&](uint32_t k) { return value[k]; });
   const HNode& root = h[h.root()];
   ASSERT_TRUE(root.cluster);
+  ASSERT_GT(facing.size(), size_t(h.root()));
   const Vec3 mean(1, 1, 1);
   EXPECT_NEAR(radiosity_towards(root, facing[h.root()], {1, 0, 0}, mean).x, 6.0, 1e-6);
   EXPECT_NEAR(radiosity_towards(root, facing[h.root()], {-1, 0, 0}, mean).x, 0.0, 1e-6);
   EXPECT_NEAR(radiosity_towards(root, facing[h.root()], normalize(Vec3(1, 1, 0)), mean).x, 3.0, 1e-6);
-  const uint32_t element = h.polygon_root(0);
-  EXPECT_EQ(radiosity_towards(h[element], facing[element], {1, 0, 0}, mean).x, 1.0);  // an element: its own
+  EXPECT_EQ(radiosity_towards(h[h.polygon_root(0)], {}, {1, 0, 0}, mean).x, 1.0);  // an element: its own
 }
 
 // Push-pull: at every node, A·B equals the sum of A·B of its children (so every level of the

@@ -68,7 +68,8 @@ bool is_convex_enclosure(const Scene& scene) {
 namespace {
 
 // The polygons pressed against others: for each, those that face the other way in its plane and meet
-// its box (found once a polygon needs them: the closure test asks for few).
+// its box, found the first time one of its rays escapes or meets a back face (one pass over the scene
+// for each such polygon, not for each such ray).
 class PressedFaces {
  public:
   PressedFaces(const Scene& scene, double tol) : scene_(scene), tol_(tol), found_(scene.polygons.size(), 0), opposite_(scene.polygons.size()) {

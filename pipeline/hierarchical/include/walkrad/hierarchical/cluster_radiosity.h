@@ -9,18 +9,56 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "walkrad/hierarchical/hierarchy.h"
 
 namespace walkrad {
 
-// Per node: for a cluster, Σ over its element roots of facing[a] × value (value: by node, the area
-// mean of each element root's leaves); zero for elements.
-std::vector<std::array<Vec3, 6>> facing_radiosity(const Hierarchy& h, const std::vector<Vec3>& value);
+// By node, up to the last cluster (clusters only are read): for a cluster, Σ over its element roots of
+// facing[a] × value(root), value(k) node k's radiosity (an element root's: its leaves' area mean).
+template <class Value>
+std::vector<std::array<Vec3, 6>> facing_radiosity(const Hierarchy& h, Value value) {
+  const std::vector<HNode>& nodes = h.nodes();
+  size_t clusters = 0;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k].cluster) clusters = k + 1;
+  std::vector<std::array<Vec3, 6>> out(clusters);
+  // Children come after their parents: from the end, each node is complete before its parent takes it.
+  for (size_t k = nodes.size(); k-- > 0;) {
+    const HNode& n = nodes[k];
+    if (n.parent < 0 || !nodes[size_t(n.parent)].cluster) continue;
+    std::array<Vec3, 6>& parent = out[size_t(n.parent)];
+    if (n.cluster) {
+      for (size_t a = 0; a < 6; ++a) parent[a] += out[k][a];
+    } else {  // an element root: its leaves share its normal
+      const Vec3 v = value(uint32_t(k));
+      for (size_t a = 0; a < 6; ++a) parent[a] += v * double(n.facing[a]);
+    }
+  }
+  return out;
+}
 
 // What cluster n sends towards unit direction u (from n to the receiver): its surfaces' radiosity
 // weighed by the area each presents to u; mean where none faces u (or n is an element).
 Vec3 radiosity_towards(const HNode& n, const std::array<Vec3, 6>& facing_radiosity, const Vec3& u, const Vec3& mean);
+
+// What link l takes from its source towards a receiver centred at `at`: each part (its source's
+// children by Link::seen, else the source whole) that is a cluster by direction from its own centre
+// (facing: facing_radiosity's; empty: none), the rest what sent(node) gives. The solve's gather, the
+// transport walk and the mesh's readings must take the same: a gather and a transport that differed
+// made the aggregation correction fight the sweeps.
+template <class Sent>
+Vec3 link_radiosity_towards(const Hierarchy& h, const Link& l, const Vec3& at, const std::vector<std::array<Vec3, 6>>& facing,
+                            Sent sent) {
+  if (!has_seen(l) && !h[l.source].cluster) return sent(l.source);  // most links, every sweep: the plain read
+  Vec3 out;
+  for_each_part(h, l, [&](uint32_t node, double w) {
+    const HNode& p = h[node];
+    out += (p.cluster && node < facing.size() ? radiosity_towards(p, facing[node], normalize(at - p.center), sent(node)) : sent(node)) * w;
+  });
+  return out;
+}
 
 }  // namespace walkrad

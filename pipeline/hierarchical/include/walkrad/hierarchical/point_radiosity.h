@@ -41,8 +41,8 @@ class ClusterGather {
   // What a node sends along a link: everything (Bt, or its emission without indirect light), or for
   // a gathered vertex only what it reflects.
   Vec3 sent(uint32_t node, bool gathered) const;
-  Vec3 sent(const Link& l, bool gathered) const;  // what a link takes from its source (Link::seen)
-  // The same towards a receiver centred at `receiver`: a cluster source by direction (cluster_radiosity.h).
+  // What a link takes from its source (its parts by Link::seen) towards a receiver centred at
+  // `receiver`: a cluster by direction (cluster_radiosity.h).
   Vec3 sent(const Link& l, bool gathered, const Vec3& receiver) const;
   double row(uint32_t polygon) const { return row_[polygon]; }
 
@@ -72,7 +72,7 @@ class ClusterGather {
   std::vector<Vec3> H_, Hg_;
   std::vector<double> row_;
   std::vector<Vec3> emitted_;  // per node: its emission as sent (emitted_as_sent)
-  std::vector<std::array<Vec3, 6>> facing_, facing_g_;  // per cluster: Bt (and what it reflects) by facing
+  std::vector<std::array<Vec3, 6>> facing_, facing_g_;  // by cluster: Bt (and what it reflects) by facing
   std::vector<int32_t> part_slot_;  // per node: its SourceParts, or -1
   std::vector<SourceParts> parts_;
 };
