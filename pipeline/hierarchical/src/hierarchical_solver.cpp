@@ -109,12 +109,24 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     // link and its sweeps for a few more (the Cornell box: 4 rounds for 1.8% of its links).
     const bool last = settled || (it > 1 && is.new_links * kLastRoundShare < stats_.links);
     const int sweeps = last ? 1000 : s_.sweeps;
+    const bool correct = s_.accelerate && s_.indirect && !s_.twins;
+    int interval = 0, wait = 0;  // sweeps between corrections, and before the next one
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       ++is.sweeps;
-      is.change = solve_sweep(is);
-      if (s_.accelerate && s_.indirect && !s_.twins) {
-        is.change = std::max(is.change, aggregation_correction(h_, change_floor_));
+      // Importance steers the refinement, and the last round's sweeps past a round's own refine nothing
+      // more: it is swept as in any round (the estimate reads it as they leave it).
+      is.change = solve_sweep(is, sweep < s_.sweeps);
+      // The correction walks every link, as a sweep does. Once the overall level is right (|c| under
+      // kIdleCorrection) what is left are local modes it cannot touch: it is tried every 2, 4, then 8
+      // sweeps until it moves the level again, and always before the sweeps stop.
+      if (correct && (wait == 0 || is.change <= s_.tolerance)) {
+        double scale = 0;
+        is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &scale));
         ++stats_.corrections;
+        interval = scale < kIdleCorrection ? std::min(std::max(2 * interval, 1), kMaxCorrectionInterval) : 0;
+        wait = interval;
+      } else if (correct) {
+        --wait;
       }
       if (is.change <= s_.tolerance) break;
     }

@@ -14,7 +14,7 @@
 
 namespace walkrad::hierarchical_detail {
 
-double Solver::solve_sweep(IterationStats& is) {
+double Solver::solve_sweep(IterationStats& is, bool with_importance) {
   std::vector<HNode>& nodes = h_.nodes();
   if (s_.indirect)  // what each cluster sends by direction, from the last sweep's radiosity
     facing_bt_ = facing_radiosity(h_, [&](uint32_t k) { return nodes[k].Bt; });
@@ -26,7 +26,7 @@ double Solver::solve_sweep(IterationStats& is) {
   is.emitted = is.absorbed = is.residual = Vec3{};
   is.clamped_leaves = 0;
   push_pull(h_.root(), Vec3{}, 0.0, DirectionalIrradiance{}, is);
-  if (importance_) {
+  if (importance_ && with_importance) {
     for (HNode& n : nodes) n.Ig = 0;
     for (const HNode& n : nodes)  // sequential: sums in a fixed order
       for (const Link& l : n.links) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;

@@ -143,6 +143,9 @@ class Solver {
   static constexpr size_t kSomeBlockers = 4, kManyBlockers = 64;
   // Refinement stops after a round that adds fewer than 1 / kLastRoundShare of the links.
   static constexpr size_t kLastRoundShare = 100;
+  // An aggregation correction that scales the reflected light by less than this is idle (run()).
+  static constexpr double kIdleCorrection = 1e-3;
+  static constexpr int kMaxCorrectionInterval = 8;
 
   // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
   static constexpr double kClusterCosine = 0.25;
@@ -282,11 +285,12 @@ class Solver {
   // (1/A_i) Σ_{k ∈ i} Σ_{m ∈ j} A_k F_km over the polygons (or the element) of each end.
   double exact_unoccluded(const HNode& ri, const HNode& sj) const;
 
-  // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance. Jacobi
-  // gathers every node from the previous sweep's radiosity; Gauss-Seidel gathers each input polygon's
-  // quadtree just before pushing it down, so it sees what the polygons before it got this sweep
-  // (clusters still gather first). Returns the largest relative change of a leaf's radiosity.
-  double solve_sweep(IterationStats& is);
+  // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance (unless
+  // with_importance is false). Jacobi gathers every node from the previous sweep's radiosity;
+  // Gauss-Seidel gathers each input polygon's quadtree just before pushing it down, so it sees what
+  // the polygons before it got this sweep (clusters still gather first). Returns the largest relative
+  // change of a leaf's radiosity.
+  double solve_sweep(IterationStats& is, bool with_importance = true);
 
   // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well
   // above 1 receives more than any enclosure could send it: coincident surfaces in the input (two
