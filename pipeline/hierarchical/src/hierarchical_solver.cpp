@@ -105,8 +105,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       save_round(state, it, true);
       break;
     }
-    // A round that added under 1% of the links is the last: each later round costs a pass over every
-    // link and its sweeps for a few more (the Cornell box: 4 rounds for 1.8% of its links).
+    // A round that added under 5% of the links is the last: each later round costs a pass over every
+    // link and its sweeps for a few more (office3: 3 rounds for 2.9% of its links, and the same error).
     const bool last = settled || (it > 1 && is.new_links * kLastRoundShare < stats_.links);
     const int sweeps = last ? 1000 : s_.sweeps;
     const bool correct = s_.accelerate && s_.indirect && !s_.twins;

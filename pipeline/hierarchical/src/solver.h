@@ -142,7 +142,7 @@ class Solver {
   // A link's rays double past this many candidate blockers in its shaft, and double again past kMany.
   static constexpr size_t kSomeBlockers = 4, kManyBlockers = 64;
   // Refinement stops after a round that adds fewer than 1 / kLastRoundShare of the links.
-  static constexpr size_t kLastRoundShare = 100;
+  static constexpr size_t kLastRoundShare = 20;
   // An aggregation correction that scales the reflected light by less than this is idle (run()).
   static constexpr double kIdleCorrection = 1e-3;
   static constexpr int kMaxCorrectionInterval = 8;
