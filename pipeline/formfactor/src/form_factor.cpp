@@ -85,13 +85,18 @@ ClippedPolygon clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, i
   return out;
 }
 
-double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) {
-  const Vec3 pn = polygon_area_normal(poly);
-  const double plane_distance = dot(p - poly.v[0], pn);
+ContourSource::ContourSource(const Polygon& p)
+    : poly(p), area_normal(polygon_area_normal(p)), length(walkrad::length(area_normal)), root_length(std::sqrt(length)) {}
+
+double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) { return point_to_polygon(p, n, ContourSource(poly)); }
+
+double point_to_polygon(const Vec3& p, const Vec3& n, const ContourSource& source) {
+  const Polygon& poly = source.poly;
+  const double plane_distance = dot(p - poly.v[0], source.area_normal);
   // On the source's plane (within 1e-12 of its size, or rounding): the polygon subtends no solid
   // angle (and the formula would mix ±β).
-  const double pl = length(pn);
-  if (std::fabs(plane_distance) <= pl * (1e-12 * std::sqrt(pl) + rounding_at(p))) return 0.0;
+  const double pl = source.length;
+  if (std::fabs(plane_distance) <= pl * (1e-12 * source.root_length + rounding_at(p))) return 0.0;
 
   // The corners relative to p, as plain doubles (a Vec3 array would be zeroed on every call): the
   // polygon's own when it lies wholly above p's horizon, the clipped polygon's otherwise.
@@ -162,9 +167,10 @@ double element_to_element(const Polygon& receiver, const Polygon& source) {
   const double distance = length(polygon_centroid(receiver) - polygon_centroid(source));
   const int order = quadrature_order(distance, std::sqrt(area), std::sqrt(polygon_area(source)));
   double sum = 0.0;
+  const ContourSource contour(source);
   for (const QuadraturePoint& q : quadrature_points(receiver, order)) {
     if (dot(q.position - source.v[0], sn) <= 0) continue;  // behind the source: sees its back
-    sum += q.weight * point_to_polygon(q.position, n, source);
+    sum += q.weight * point_to_polygon(q.position, n, contour);
   }
   return sum / area;
 }

@@ -167,6 +167,7 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   double inner = 0;               // Link::inner, as a share of a child's kernel
   // Only the emitters' links are read for it (measure_variation); even orders split into quarters.
   const bool quarters = max_component(sj.emission) > 0 && order >= 2 && order % 2 == 0;
+  const ContourSource contour(sj.shape);
   for (int c = 0; c < 4; ++c) {
     area[c] = polygon_area(kids[c]);
     unoccluded[c] = 0;
@@ -179,7 +180,7 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
       ++point;
       quarter_w[part] += q.weight;
       if (dot(q.position - sj.shape.v[0], sj.normal) <= 0) continue;
-      const double f = q.weight * point_to_polygon(q.position, ri.normal, sj.shape);
+      const double f = q.weight * point_to_polygon(q.position, ri.normal, contour);
       unoccluded[c] += f;
       quarter[part] += f;
     }
