@@ -130,6 +130,17 @@ std::array<float, 4> shares(const double* Fc, const double* sigma_c, uint32_t co
   return out;
 }
 
+// Whether every point of the box lies behind the plane through x of normal n, by a margin far past
+// rounding: then a cosine at x towards any of them is negative, whatever point is drawn there. Four in
+// five of office3's cluster samples face away (126.8 M drawn, 25.5 M facing); the receiver's point
+// decides for many of them before the source's is drawn.
+bool box_behind(const Vec3& x, const Vec3& n, const Bounds& b) {
+  const Vec3 c = b.center(), h = b.diagonal() * 0.5;
+  const double reach = std::fabs(n.x) * h.x + std::fabs(n.y) * h.y + std::fabs(n.z) * h.z;
+  const double scale = length(h) + std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z), std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+  return dot(n, c - x) + reach < -1e-9 * scale;
+}
+
 // Each of an element's quadrants (split_element) as a share of its area (Link::seen's baseline).
 void quadrant_area_shares(const Polygon& shape, double area, double* share) {
   const std::array<Polygon, 4> parts = split_element(shape);
@@ -279,8 +290,12 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
     h_.sample(ri, ru, rv, rw, pi, ni, &child);
     uint32_t source_child = 0;
     const double sw = rng.uniform(), sv = rng.uniform(), su = rng.uniform();
-    h_.sample(sj, su, sv, sw, pj, nj, &source_child);
     if (!ri.cluster) child = sample_quadrant(ri.shape, ru, rv);  // an element receiver's child to be
+    if (box_behind(pi, ni, sj.bounds)) {  // no point of the source can face this one: no need to draw it
+      drawn_samples.push_back({child, 0, 0.0, -1});
+      continue;
+    }
+    h_.sample(sj, su, sv, sw, pj, nj, &source_child);
     if (!sj.cluster) source_child = sample_quadrant(sj.shape, su, sv);
     drawn_samples.push_back({child, source_child, 0.0, -1});
     const Vec3 d = pj - pi;
