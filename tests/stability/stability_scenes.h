@@ -75,6 +75,7 @@ struct Solution {
   std::vector<uint32_t> polygon;  // in the contact-split scene
   EnergyAudit audit;
   int iterations = 0;             // classic: Gauss-Seidel sweeps; hierarchical: sweeps over all rounds
+  int corrections = 0;            // hierarchical: aggregation corrections over all rounds
   bool converged = false;
   Scene scene;                    // the contact-split scene the solution refers to
 };
@@ -137,6 +138,7 @@ inline Solution solve_hierarchy(const Scene& input, double error = HierarchicalS
   HierarchicalStats stats;
   solve_hierarchical(h, rays, settings, stats);
   for (const IterationStats& it : stats.iterations) s.iterations += it.sweeps;
+  s.corrections = int(stats.corrections);
   s.converged = stats.converged;
   for (const HNode& n : h.nodes())
     if (!n.cluster && n.child_count == 0) {
