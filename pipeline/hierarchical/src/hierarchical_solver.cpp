@@ -117,8 +117,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       // more: it is swept as in any round (the estimate reads it as they leave it).
       is.change = solve_sweep(is, sweep < s_.sweeps);
       // The correction walks every link, as a sweep does. Once the overall level is right (|c| under
-      // kIdleCorrection) what is left are local modes it cannot touch: it is tried every 2, 4, then 8
-      // sweeps until it moves the level again, and always before the sweeps stop.
+      // kIdleCorrection) what is left are local modes it cannot touch: it skips 1, 2, 4, then 8 sweeps
+      // between tries until it moves the level again, and always runs before the sweeps stop.
       if (correct && (wait == 0 || is.change <= s_.tolerance)) {
         double scale = 0;
         is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &scale));
