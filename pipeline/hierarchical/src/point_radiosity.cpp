@@ -161,7 +161,7 @@ void LeafRadiosity::source_at(uint32_t node, const Vec3& x, const Vec3& normal, 
   }
 }
 
-LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint32_t twin)
+LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint32_t twin, ChainReadings* chain)
     : clusters_(clusters), h_(clusters.hierarchy()), leaf_(leaf),
       flat_(h_[leaf].cluster || twin != kNoTwin) {
   if (flat_) {
@@ -185,27 +185,47 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint3
   Hg_.fill(clusters.H(n.polygon, true));
   row_.fill(clusters.row(n.polygon));
   rowg_ = row_;
+  // What link l of r takes towards r, and where a ray to its source ends (visible_at: once a leaf, not
+  // at each of its points).
+  const RayScene* rays = clusters.rays();
+  auto read = [&](const HNode& r, const Link& l) {
+    const HNode& s = h[l.source];
+    ChainReadings::Reading out{clusters.sent(l, false, r.center), clusters.sent(l, true, r.center), {}};
+    const double visible = l.open > 0 ? l.F / double(l.open) : 0.0;
+    if (!s.cluster && l.open > 0 && rays && visible > 0 && visible <= kWhole)
+      out.target = polygon_centroid(s.shape) + s.normal * rays->offset();
+    return out;
+  };
   uint32_t below = leaf;  // the child of a on the way to the leaf: the element chain only
   for (int32_t a = int32_t(leaf); a >= 0 && !h[uint32_t(a)].cluster; below = uint32_t(a), a = h[uint32_t(a)].parent) {
     const HNode& r = h[uint32_t(a)];
     const bool own = uint32_t(a) == leaf;
     const uint32_t slot = own ? 0 : child_slot(h, below);
-    for (const Link& l : r.links) {
+    // An ancestor's readings, kept from the leaf before where it was the same element.
+    const std::vector<ChainReadings::Reading>* kept = nullptr;
+    if (chain && !own && !r.links.empty()) {
+      if (chain->levels.size() <= size_t(r.depth)) chain->levels.resize(size_t(r.depth) + 1);
+      ChainReadings::Level& level = chain->levels[size_t(r.depth)];
+      if (level.node != uint32_t(a)) {
+        level.node = uint32_t(a);
+        level.links.clear();
+        for (const Link& l : r.links) level.links.push_back(read(r, l));
+      }
+      kept = &level.links;
+    }
+    for (size_t k = 0; k < r.links.size(); ++k) {
+      const Link& l = r.links[k];
       const HNode& s = h[l.source];
-      const Vec3 sent = clusters.sent(l, false, r.center), reflected = clusters.sent(l, true, r.center);
+      const ChainReadings::Reading reading = kept ? (*kept)[k] : read(r, l);
+      const Vec3& sent = reading.sent;
+      const Vec3& reflected = reading.reflected;
       // A source element near the receiver: the point's own form factor (the kernel changes within a
       // share's quadrant there; farther, the shares say enough). At a gathered vertex every element
       // source is taken at the point: the gather is what the walkthrough sees, and a quadrant's share
       // placed at a vertex is a staircase that Gouraud shading smooths into the wrong ramp.
       const bool point_form = !s.cluster && l.open > 0;
       const bool close = point_form && length(s.center - r.center) < kNear * (r.radius + s.radius);
-      if (point_form) {
-        const double visible = l.F / double(l.open);
-        const RayScene* rays = clusters.rays();
-        // Once a leaf, not at each of its points (visible_at).
-        const Vec3 target = rays && visible > 0 && visible <= kWhole ? polygon_centroid(s.shape) + s.normal * rays->offset() : Vec3{};
-        near_.push_back({l.source, visible, close, sent, reflected, target});
-      }
+      if (point_form) near_.push_back({l.source, l.F / double(l.open), close, sent, reflected, reading.target});
       // As the solve pushes it: by the part's share (the leaf's own links by the quadrant the point
       // falls in).
       for (uint32_t q = 0; q < 4; ++q) {

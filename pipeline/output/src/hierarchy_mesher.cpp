@@ -36,6 +36,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
   struct Cached {
     uint32_t leaf = UINT32_MAX;
     std::unique_ptr<LeafRadiosity> radiosity;
+    ChainReadings chain;  // the last leaf's ancestors' link readings (siblings come one after another)
   };
   tbb::enumerable_thread_specific<Cached> cache;  // lives no longer than `clusters`, which it refers to
   auto transmitting = [&](uint32_t polygon) { return point.twins && (*point.twins)[polygon] != kNoTwin; };
@@ -130,7 +131,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     Cached& c = cache.local();
     const uint32_t i = leaf[face];
     if (c.leaf != i) {
-      c.radiosity = std::make_unique<LeafRadiosity>(clusters, i, point.twins ? (*point.twins)[h[i].polygon] : kNoTwin);
+      c.radiosity = std::make_unique<LeafRadiosity>(clusters, i, point.twins ? (*point.twins)[h[i].polygon] : kNoTwin, &c.chain);
       c.leaf = i;
     }
     return c.radiosity->at(x, gathered);
