@@ -86,7 +86,7 @@ ClippedPolygon clip_to_hemisphere(const Vec3& p, const Vec3& n, const Vec3* v, i
 }
 
 ContourSource::ContourSource(const Polygon& p)
-    : poly(p), area_normal(polygon_area_normal(p)), length(walkrad::length(area_normal)), root_length(std::sqrt(length)) {}
+    : poly(p), area_normal(polygon_area_normal(p)), norm(length(area_normal)), root_norm(std::sqrt(norm)) {}
 
 double point_to_polygon(const Vec3& p, const Vec3& n, const Polygon& poly) { return point_to_polygon(p, n, ContourSource(poly)); }
 
@@ -95,8 +95,8 @@ double point_to_polygon(const Vec3& p, const Vec3& n, const ContourSource& sourc
   const double plane_distance = dot(p - poly.v[0], source.area_normal);
   // On the source's plane (within 1e-12 of its size, or rounding): the polygon subtends no solid
   // angle (and the formula would mix ±β).
-  const double pl = source.length;
-  if (std::fabs(plane_distance) <= pl * (1e-12 * source.root_length + rounding_at(p))) return 0.0;
+  const double pl = source.norm;
+  if (std::fabs(plane_distance) <= pl * (1e-12 * source.root_norm + rounding_at(p))) return 0.0;
 
   // The corners relative to p, as plain doubles (a Vec3 array would be zeroed on every call): the
   // polygon's own when it lies wholly above p's horizon, the clipped polygon's otherwise.

@@ -120,10 +120,10 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       // kIdleCorrection) what is left are local modes it cannot touch: it skips 1, 2, 4, then 8 sweeps
       // between tries until it moves the level again, and always runs before the sweeps stop.
       if (correct && (wait == 0 || is.change <= s_.tolerance)) {
-        double scale = 0;
-        is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &scale));
+        double level = 0;
+        is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &level));
         ++stats_.corrections;
-        interval = scale < kIdleCorrection ? std::min(std::max(2 * interval, 1), kMaxCorrectionInterval) : 0;
+        interval = level < kIdleCorrection ? std::min(std::max(2 * interval, 1), kMaxCorrectionInterval) : 0;
         wait = interval;
       } else if (correct) {
         --wait;

@@ -426,8 +426,7 @@ double Solver::exact_unoccluded(const HNode& ri, const HNode& sj) const {
   };
   auto faces = [&](const HNode& n, std::vector<Face>& out) {
     out.clear();
-    auto add = [&](const Polygon& p) {
-      const Vec3 normal = polygon_normal(p);
+    auto add = [&](const Polygon& p, const Vec3& normal) {
       double off = 0, size = 0;
       for (int k = 0; k < p.count; ++k) {
         off = std::max(off, std::fabs(dot(p.v[size_t(k)] - p.v[0], normal)));
@@ -436,16 +435,16 @@ double Solver::exact_unoccluded(const HNode& ri, const HNode& sj) const {
       out.push_back({&p, normal, off + 1024 * size});
     };
     if (!n.cluster) {
-      add(n.shape);
+      add(n.shape, n.normal);
     } else {
       for (uint32_t k = h_.polygon_begin(n); k < h_.polygon_begin(n) + h_.polygon_count(n); ++k)
-        add(h_.scene().polygons[h_.tree().polygons[k]]);
+        add(h_.scene().polygons[h_.tree().polygons[k]], h_.tree_polygon_normal(k));
     }
   };
   // Every corner of a strictly behind b's plane (through b's first corner), by more than slack: no
   // point of a sees b's front, and no point of b lies above a's horizon where the roles are swapped.
   // element_to_element gives such a pair exactly 0 (its points skip the source, or clip it away), so
-  // leaving it out changes no bit; between a cluster's facets half the pairs face away (office3).
+  // leaving it out changes no bit. office3's bake: 6.36 M of its 12.95 M pairs (49%).
   auto behind = [](const Face& a, const Face& b) {
     for (int k = 0; k < a.p->count; ++k)
       if (dot(a.p->v[size_t(k)] - b.p->v[0], b.normal) >= -(a.slack + b.slack)) return false;

@@ -347,7 +347,7 @@ uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row, const std::vector
   return left;
 }
 
-double aggregation_correction(Hierarchy& h, double floor, double* scale) {
+double aggregation_correction(Hierarchy& h, double floor, double* level) {
   std::vector<HNode>& nodes = h.nodes();
   std::vector<Vec3> b(nodes.size()), v(nodes.size());
   for (size_t k = 0; k < nodes.size(); ++k)
@@ -369,7 +369,7 @@ double aggregation_correction(Hierarchy& h, double floor, double* scale) {
   Vec3 c;
   for (int k = 0; k < 3; ++k)
     if (den[k] > 1e-12 * total[k] && total[k] > 0) c[k] = std::max(-0.5, num[k] / den[k]);
-  if (scale) *scale = max_component(abs3(c));
+  if (level) *level = max_component(abs3(c));
   double largest = 0;
   for (size_t k = 0; k < nodes.size(); ++k) {
     HNode& n = nodes[k];

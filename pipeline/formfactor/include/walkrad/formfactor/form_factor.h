@@ -25,7 +25,7 @@ struct ContourSource {
   explicit ContourSource(const Polygon& p);
   const Polygon& poly;
   Vec3 area_normal;
-  double length, root_length;
+  double norm, root_norm;  // |area_normal| and its square root
 };
 double point_to_polygon(const Vec3& p, const Vec3& n, const ContourSource& source);
 

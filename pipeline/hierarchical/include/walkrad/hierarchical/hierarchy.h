@@ -119,6 +119,8 @@ class Hierarchy {
   // The input polygons under a cluster node, as a range of ClusterTree::polygons.
   uint32_t polygon_begin(const HNode& cluster) const { return tree_.nodes[cluster.tree_node].first; }
   uint32_t polygon_count(const HNode& cluster) const { return tree_.nodes[cluster.tree_node].count; }
+  // The normal (polygon_normal) of the polygon at ClusterTree::polygons[k], kept for clusters' samples.
+  const Vec3& tree_polygon_normal(uint32_t k) const { return normals_[k]; }
 
   // A point of the node for visibility and Monte Carlo transfers, from (u, v, w) ∈ [0,1)³: on an
   // element, by area; in a cluster, on one of its polygons chosen by area. normal: that surface's.

@@ -70,8 +70,8 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance = 1e-9, int
 uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row = nullptr, const std::vector<uint8_t>* unscaled = nullptr);
 
 // One aggregation correction of the leaves' radiosity (indirect light on). Returns the largest
-// change of a leaf's B relative to max(its B, floor); scale, if given: the largest |c| of the three
+// change of a leaf's B relative to max(its B, floor); level, if given: the largest |c| of the three
 // channels (how far the scene's overall reflected level was off). Updates B and Bt everywhere.
-double aggregation_correction(Hierarchy& h, double floor = 0, double* scale = nullptr);
+double aggregation_correction(Hierarchy& h, double floor = 0, double* level = nullptr);
 
 }  // namespace walkrad

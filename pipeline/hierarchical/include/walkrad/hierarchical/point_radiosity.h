@@ -77,8 +77,6 @@ class ClusterGather {
   std::vector<SourceParts> parts_;
 };
 
-// The solution over one leaf: what does not depend on the point (per quadrant of the leaf) gathered
-// once, and the near element sources kept for the contour formula at each point.
 // What each link of an element takes from its source towards that element (ClusterGather::sent,
 // gathered and not) and where rays to a source seen in part end: the same for every leaf below the
 // element. Kept for the elements of one chain from the root to a leaf, one per depth, so that the
@@ -95,6 +93,8 @@ struct ChainReadings {
   std::vector<Level> levels;  // by the element's depth
 };
 
+// The solution over one leaf: what does not depend on the point (per quadrant of the leaf) gathered
+// once, and the near element sources kept for the contour formula at each point.
 class LeafRadiosity {
  public:
   // A cluster keeps its mean B; a leaf of a transmitting polygon (twin: its twin polygon, else kNoTwin)
