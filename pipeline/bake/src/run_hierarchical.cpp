@@ -111,6 +111,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   }
   if (plan.transmission.on) hs.twins = &twins;
   hs.volumes = volumes;
+  hs.ray_sample = s.ray_sample;
   hs.check_limits = [&phases](const char* where, uint64_t more) {
     phases.check(std::string("solve: ") + where);
     if (more > 0)

@@ -14,6 +14,8 @@
 
 namespace walkrad {
 
+struct RaySample;  // walkrad/hierarchical/hierarchical_solver.h
+
 struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
@@ -51,6 +53,9 @@ struct BakeSettings {
   // to start from it. Not recorded: a resumed bake is byte-identical to one that ran through.
   std::string checkpoint;
   bool resume = false;
+  // Benchmarks only (bench/level_rays_bench.cpp): a sample of the hierarchical solve's rays goes here.
+  // Not recorded, not owned.
+  RaySample* ray_sample = nullptr;
 
   nlohmann::json to_json() const;  // what the manifest records (no paths that vary by machine)
 };

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,16 @@
 #include "walkrad/visibility/volume_visibility.h"
 
 namespace walkrad {
+
+// A sample of a solve's Embree rays, for benchmarks (bench/level_rays_bench.cpp: the solve's rays per
+// second against a bare loop over the same rays): the segments of every link whose (receiver, source)
+// hash falls in one of `every` buckets, appended as links are evaluated (their order varies with the
+// threads; what is sampled does not).
+struct RaySample {
+  uint32_t every = 64;
+  std::mutex lock;
+  std::vector<RayScene::Segment> segments;
+};
 
 struct HierarchicalSettings {
   double error = 0.1;         // tolerance, relative to what each surface shows (error_estimate.cpp)
@@ -78,6 +89,8 @@ struct HierarchicalSettings {
   // the first round.
   std::function<void(int rounds, const std::function<void(ByteWriter&)>& write_state)> save_round;
   ByteReader* resume = nullptr;
+  // Benchmarks only: where to put a sample of the solve's rays (RaySample). Null: nothing. Not owned.
+  RaySample* ray_sample = nullptr;
 };
 
 struct IterationStats {
