@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "walkrad/formats/error.h"
 #include "walkrad/core/sampling.h"
@@ -67,9 +69,64 @@ bool is_convex_enclosure(const Scene& scene) {
 
 namespace {
 
+// A uniform grid over boxes (about two boxes a cell), each cell listing the boxes that meet it in
+// index order: the boxes that may meet a given one without a pass over all of them.
+class BoxGrid {
+ public:
+  explicit BoxGrid(const std::vector<Bounds>& boxes) {
+    for (const Bounds& b : boxes) all_.extend(b);
+    if (boxes.empty()) return;
+    const Vec3 d = all_.diagonal();
+    const double floor = std::max(1e-3 * length(d), 1e-300);  // a flat scene's thin axis
+    const double volume = std::max(d.x, floor) * std::max(d.y, floor) * std::max(d.z, floor);
+    double side = std::cbrt(volume / std::max(1.0, double(boxes.size()) / 2.0));
+    for (;; side *= 2) {  // at most 4 M cells
+      size_t total = 1;
+      for (int k = 0; k < 3; ++k) {
+        cells_[k] = int(std::clamp(std::ceil(d[k] / side), 1.0, 4096.0));
+        total *= size_t(cells_[k]);
+      }
+      if (total <= (size_t(1) << 22)) break;
+    }
+    for (int k = 0; k < 3; ++k) size_[k] = d[k] > 0 ? d[k] / cells_[k] : 1.0;
+    start_.assign(size_t(cells_[0]) * size_t(cells_[1]) * size_t(cells_[2]) + 1, 0);
+    for (const Bounds& b : boxes) each_cell(b, [&](size_t c) { ++start_[c + 1]; });
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(start_.back());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (uint32_t i = 0; i < boxes.size(); ++i) each_cell(boxes[i], [&](size_t c) { items_[fill[c]++] = i; });
+  }
+
+  // The boxes that share a cell with `box`, in index order, each once: every box that meets it among them.
+  void near(const Bounds& box, std::vector<uint32_t>& out) const {
+    out.clear();
+    if (start_.empty()) return;
+    each_cell(box, [&](size_t c) { out.insert(out.end(), items_.begin() + start_[c], items_.begin() + start_[c + 1]); });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+ private:
+  // Cells by floor((x - lo) / size), clamped: monotone in x, so two boxes that meet share a cell.
+  int cell(int k, double x) const { return int(std::clamp(std::floor((x - all_.lo[k]) / size_[k]), 0.0, double(cells_[k] - 1))); }
+  template <class F>
+  void each_cell(const Bounds& b, F&& f) const {
+    const int x0 = cell(0, b.lo.x), x1 = cell(0, b.hi.x), y0 = cell(1, b.lo.y), y1 = cell(1, b.hi.y), z0 = cell(2, b.lo.z), z1 = cell(2, b.hi.z);
+    for (int z = z0; z <= z1; ++z)
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) f((size_t(z) * size_t(cells_[1]) + size_t(y)) * size_t(cells_[0]) + size_t(x));
+  }
+
+  Bounds all_;
+  int cells_[3] = {1, 1, 1};
+  double size_[3] = {1, 1, 1};
+  std::vector<uint32_t> start_, items_;
+};
+
 // The polygons pressed against others: for each, those that face the other way in its plane and meet
-// its box, found the first time one of its rays escapes or meets a back face (one pass over the scene
-// for each such polygon, not for each such ray).
+// its box, found the first time one of its rays escapes or meets a back face (among the polygons whose
+// boxes share a grid cell with its own; a pass over the whole scene for each such polygon grew as the
+// square of the polygons: office-floor's prepare phase took 5.3 s at 32 rooms, 27.4 s at 64).
 class PressedFaces {
  public:
   PressedFaces(const Scene& scene, double tol) : scene_(scene), tol_(tol), found_(scene.polygons.size(), 0), opposite_(scene.polygons.size()) {
@@ -92,7 +149,12 @@ class PressedFaces {
       found_[self] = 1;
       const Vec3& n = normals_[self];
       const Polygon& own = scene_.polygons[self];
-      for (size_t j = 0; j < scene_.polygons.size(); ++j) {
+      if (!grid_) grid_ = std::make_unique<BoxGrid>(bounds_);
+      Bounds reach = bounds_[self];
+      reach.lo = reach.lo - Vec3(tol_, tol_, tol_);
+      reach.hi = reach.hi + Vec3(tol_, tol_, tol_);
+      grid_->near(reach, near_);
+      for (const uint32_t j : near_) {
         const Polygon& q = scene_.polygons[j];
         if (j == self || dot(normals_[j], n) > -1 + 1e-9 || std::fabs(dot(own.v[0] - q.v[0], normals_[j])) > tol_) continue;
         bool apart = false;
@@ -123,6 +185,8 @@ class PressedFaces {
   std::vector<Bounds> bounds_;
   std::vector<uint8_t> found_;
   std::vector<std::vector<uint32_t>> opposite_;
+  std::unique_ptr<BoxGrid> grid_;  // made at the first search
+  std::vector<uint32_t> near_;
 };
 
 }  // namespace
