@@ -5,7 +5,7 @@ build/bench/walkrad_level_rays_bench (importance-driven; view-independent too wi
 the table for docs/performance.md: per phase seconds, rays and peak memory, and the solve's rays per
 second against a bare rtcOccluded1 loop over a sample of the same rays on as many threads.
 
-Usage: bench/large_level.py [--build BUILD] [--rooms 32 64 150] [--vi] [--threads 2] [--every 64] [--work DIR]
+Usage: bench/large_level.py [--build BUILD] [--rooms 32 64 150] [--vi] [--threads 2] [--every 1024] [--work DIR]
 One bake per level and mode, as long as the bake takes (the 150-room level: minutes to a quarter of an
 hour on 2 cores); the machine is shared, so quote the ratio, which comes from one process."""
 import argparse
@@ -20,7 +20,8 @@ ap.add_argument("--build", default=os.path.join(root, "build"))
 ap.add_argument("--rooms", type=int, nargs="+", default=[32, 64, 150])
 ap.add_argument("--vi", action="store_true", help="also bake each level view-independent")
 ap.add_argument("--threads", type=int, default=2)
-ap.add_argument("--every", type=int, default=64, help="sample the links of one hash bucket in EVERY")
+ap.add_argument("--every", type=int, default=1024,
+                help="sample the links of one hash bucket in EVERY (the sample is held in memory: 48 bytes a ray)")
 ap.add_argument("--work", default=None, help="where the levels and bakes go (default BUILD/bench-levels)")
 args = ap.parse_args()
 bench = os.path.join(args.build, "bench/walkrad_level_rays_bench")

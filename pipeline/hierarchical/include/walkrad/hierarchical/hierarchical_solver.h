@@ -36,7 +36,7 @@ namespace walkrad {
 // hash falls in one of `every` buckets, appended as links are evaluated (their order varies with the
 // threads; what is sampled does not).
 struct RaySample {
-  uint32_t every = 64;
+  uint32_t every = 1024;
   std::mutex lock;
   std::vector<RayScene::Segment> segments;
 };
