@@ -80,6 +80,7 @@ class BoxGrid {
     const double floor = std::max(1e-3 * length(d), 1e-300);  // a flat scene's thin axis
     const double volume = std::max(d.x, floor) * std::max(d.y, floor) * std::max(d.z, floor);
     double side = std::cbrt(volume / std::max(1.0, double(boxes.size()) / 2.0));
+    if (!(side > 0)) side = 1;  // boxes all at one point (the volume underflowed): one cell
     for (;; side *= 2) {  // at most 4 M cells
       size_t total = 1;
       for (int k = 0; k < 3; ++k) {
