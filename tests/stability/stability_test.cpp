@@ -132,8 +132,8 @@ Scene lit_room() {
   return scene;
 }
 
-// Once the scene's overall level is right the correction idles (|c| under 1e-3) and is tried every
-// 2, 4, then 8 sweeps: fewer corrections than sweeps, and the same level of light as a solve that
+// Once the scene's overall level is right the correction idles (|c| under 1e-3) and skips 1, 2, 4, then
+// 8 sweeps between tries: fewer corrections than sweeps, and the same level of light as a solve that
 // never corrects, converged as far (each leaf's last update under 1e-7). The lit room (ρ 0.7, a lamp
 // and a block; closed, so its transport is balanced and power conserved).
 TEST(CorrectionBackoff, ARoomReachesTheSameLevelWithFewerCorrections) {

@@ -146,7 +146,7 @@ BakeSummary bake(const BakeSettings& s) {
   const VolumeClusters volume_clusters = s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{};
   if (const std::vector<int> lossless = channels_without_absorption(scene); !lossless.empty()) {
     uint64_t closure_rays = 0, pressed = 0;
-    if (is_closed(scene, rays, closure_rays, pressed)) {
+    if (is_closed(scene, rays, closure_rays, pressed, nullptr, &tree)) {
       static const char* kNames[] = {"red", "green", "blue"};
       std::string which;
       for (int c : lossless) which += std::string(which.empty() ? "" : ", ") + kNames[c];
@@ -155,7 +155,7 @@ BakeSummary bake(const BakeSettings& s) {
                                     "the light, so radiosity has no finite value; give some surface a reflectance below 1");
     }
   }
-  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects, &volume_clusters);
+  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects, &volume_clusters, &tree);
   plan.transmission = transmission;
   if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
   // The extinction grid: reused from the previous bake in this folder when it was made from the same

@@ -8,6 +8,7 @@
 
 #include "walkrad/formats/error.h"
 #include "walkrad/core/sampling.h"
+#include "walkrad/scene/cluster_tree.h"
 #include "walkrad/scene/texture_sampling.h"
 
 namespace walkrad {
@@ -69,76 +70,17 @@ bool is_convex_enclosure(const Scene& scene) {
 
 namespace {
 
-// A uniform grid over boxes (about two boxes a cell), each cell listing the boxes that meet it in
-// index order: the boxes that may meet a given one without a pass over all of them.
-class BoxGrid {
- public:
-  explicit BoxGrid(const std::vector<Bounds>& boxes) {
-    for (const Bounds& b : boxes) all_.extend(b);
-    if (boxes.empty()) return;
-    const Vec3 d = all_.diagonal();
-    const double floor = std::max(1e-3 * length(d), 1e-300);  // a flat scene's thin axis
-    const double volume = std::max(d.x, floor) * std::max(d.y, floor) * std::max(d.z, floor);
-    double side = std::cbrt(volume / std::max(1.0, double(boxes.size()) / 2.0));
-    if (!(side > 0)) side = 1;  // boxes all at one point (the volume underflowed): one cell
-    for (;; side *= 2) {  // at most 4 M cells
-      size_t total = 1;
-      for (int k = 0; k < 3; ++k) {
-        cells_[k] = int(std::clamp(std::ceil(d[k] / side), 1.0, 4096.0));
-        total *= size_t(cells_[k]);
-      }
-      if (total <= (size_t(1) << 22)) break;
-    }
-    for (int k = 0; k < 3; ++k) size_[k] = d[k] > 0 ? d[k] / cells_[k] : 1.0;
-    start_.assign(size_t(cells_[0]) * size_t(cells_[1]) * size_t(cells_[2]) + 1, 0);
-    for (const Bounds& b : boxes) each_cell(b, [&](size_t c) { ++start_[c + 1]; });
-    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    items_.resize(start_.back());
-    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (uint32_t i = 0; i < boxes.size(); ++i) each_cell(boxes[i], [&](size_t c) { items_[fill[c]++] = i; });
-  }
-
-  // The boxes that share a cell with `box`, in index order, each once: every box that meets it among them.
-  void near(const Bounds& box, std::vector<uint32_t>& out) const {
-    out.clear();
-    if (start_.empty()) return;
-    each_cell(box, [&](size_t c) { out.insert(out.end(), items_.begin() + start_[c], items_.begin() + start_[c + 1]); });
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-  }
-
- private:
-  // Cells by floor((x - lo) / size), clamped: monotone in x, so two boxes that meet share a cell.
-  int cell(int k, double x) const { return int(std::clamp(std::floor((x - all_.lo[k]) / size_[k]), 0.0, double(cells_[k] - 1))); }
-  template <class F>
-  void each_cell(const Bounds& b, F&& f) const {
-    const int x0 = cell(0, b.lo.x), x1 = cell(0, b.hi.x), y0 = cell(1, b.lo.y), y1 = cell(1, b.hi.y), z0 = cell(2, b.lo.z), z1 = cell(2, b.hi.z);
-    for (int z = z0; z <= z1; ++z)
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) f((size_t(z) * size_t(cells_[1]) + size_t(y)) * size_t(cells_[0]) + size_t(x));
-  }
-
-  Bounds all_;
-  int cells_[3] = {1, 1, 1};
-  double size_[3] = {1, 1, 1};
-  std::vector<uint32_t> start_, items_;
-};
-
 // The polygons pressed against others: for each, those that face the other way in its plane and meet
-// its box, found the first time one of its rays escapes or meets a back face (among the polygons whose
-// boxes share a grid cell with its own; a pass over the whole scene for each such polygon grew as the
-// square of the polygons: office-floor's prepare phase took 5.3 s at 32 rooms, 27.4 s at 64).
+// its box, found the first time one of its rays escapes or meets a back face, among the polygons the
+// scene's cluster tree (cluster_tree.h) finds near its box. (A pass over the whole scene for each such
+// polygon grew as the square of the polygons: office-floor's prepare phase took 5.3 s at 32 rooms,
+// 27.4 s at 64.)
 class PressedFaces {
  public:
-  PressedFaces(const Scene& scene, double tol) : scene_(scene), tol_(tol), found_(scene.polygons.size(), 0), opposite_(scene.polygons.size()) {
+  PressedFaces(const Scene& scene, double tol, const ClusterTree* tree)
+      : scene_(scene), tol_(tol), found_(scene.polygons.size(), 0), opposite_(scene.polygons.size()), given_(tree) {
     normals_.reserve(scene.polygons.size());
-    bounds_.reserve(scene.polygons.size());
-    for (const Polygon& p : scene.polygons) {
-      normals_.push_back(polygon_normal(p));
-      Bounds b;
-      for (int k = 0; k < p.count; ++k) b.extend(p.v[k]);
-      bounds_.push_back(b);
-    }
+    for (const Polygon& p : scene.polygons) normals_.push_back(polygon_normal(p));
   }
   const Vec3& normal(size_t i) const { return normals_[i]; }
 
@@ -150,18 +92,10 @@ class PressedFaces {
       found_[self] = 1;
       const Vec3& n = normals_[self];
       const Polygon& own = scene_.polygons[self];
-      if (!grid_) grid_ = std::make_unique<BoxGrid>(bounds_);
-      Bounds reach = bounds_[self];
-      reach.lo = reach.lo - Vec3(tol_, tol_, tol_);
-      reach.hi = reach.hi + Vec3(tol_, tol_, tol_);
-      grid_->near(reach, near_);
-      for (const uint32_t j : near_) {
+      for (const uint32_t j : meeting(uint32_t(self))) {
         const Polygon& q = scene_.polygons[j];
         if (j == self || dot(normals_[j], n) > -1 + 1e-9 || std::fabs(dot(own.v[0] - q.v[0], normals_[j])) > tol_) continue;
-        bool apart = false;
-        for (int k = 0; k < 3; ++k)
-          apart = apart || bounds_[j].lo[k] > bounds_[self].hi[k] + tol_ || bounds_[j].hi[k] < bounds_[self].lo[k] - tol_;
-        if (!apart) opposite_[self].push_back(uint32_t(j));
+        opposite_[self].push_back(j);
       }
     }
     for (const uint32_t j : opposite_[self]) {
@@ -180,13 +114,43 @@ class PressedFaces {
   }
 
  private:
+  // The polygons whose boxes meet polygon i's within tol, in index order (without a tree given, one
+  // made at the first search: most scenes never search).
+  const std::vector<uint32_t>& meeting(uint32_t i) {
+    if (!given_ && !made_) made_ = std::make_unique<ClusterTree>(build_cluster_tree(scene_));
+    const ClusterTree& tree = given_ ? *given_ : *made_;
+    const Bounds& own = tree.polygon_bounds[i];
+    auto apart = [&](const Bounds& b) {
+      for (int k = 0; k < 3; ++k)
+        if (b.lo[k] > own.hi[k] + tol_ || b.hi[k] < own.lo[k] - tol_) return true;
+      return false;
+    };
+    near_.clear();
+    std::vector<int32_t> stack;
+    if (!tree.nodes.empty()) stack.push_back(0);
+    while (!stack.empty()) {  // a node's box holds its polygons': apart from it, apart from them
+      const ClusterNode& node = tree.nodes[size_t(stack.back())];
+      stack.pop_back();
+      if (apart(node.bounds)) continue;
+      if (!node.leaf()) {
+        stack.push_back(node.child[0]);
+        stack.push_back(node.child[1]);
+        continue;
+      }
+      for (uint32_t k = node.first; k < node.first + node.count; ++k)
+        if (!apart(tree.polygon_bounds[tree.polygons[k]])) near_.push_back(tree.polygons[k]);
+    }
+    std::sort(near_.begin(), near_.end());
+    return near_;
+  }
+
   const Scene& scene_;
   double tol_;
   std::vector<Vec3> normals_;
-  std::vector<Bounds> bounds_;
   std::vector<uint8_t> found_;
   std::vector<std::vector<uint32_t>> opposite_;
-  std::unique_ptr<BoxGrid> grid_;  // made at the first search
+  const ClusterTree* given_;
+  std::unique_ptr<ClusterTree> made_;
   std::vector<uint32_t> near_;
 };
 
@@ -205,10 +169,11 @@ std::vector<int> channels_without_absorption(const Scene& scene) {
   return channels;
 }
 
-bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples, double* back_share) {
+bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples, double* back_share,
+               const ClusterTree* tree) {
   const size_t n = scene.polygons.size();
   const double tol = 1e-6 * length(scene.bounds().diagonal());  // contact_split's default
-  PressedFaces pressed(scene, tol);
+  PressedFaces pressed(scene, tol, tree);
   const size_t per = std::clamp<size_t>(65536 / std::max<size_t>(n, 1), 1, 64);
   double total = 0, lost = 0;
   for (const Polygon& p : scene.polygons) total += polygon_area(p);
@@ -245,7 +210,8 @@ bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, ui
 
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
                         bool view_independent, const std::string& method,
-                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes) {
+                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes,
+                        const ClusterTree* tree) {
   for (const auto& [name, value] : overrides) {
     if (name != "indirect" && name != "visibility" && name != "importance" && name != "clusters" && name != "closure" &&
         name != "punctual" && name != "transmission" && name != "textures" && name != "volumes" && name != "gather" &&
@@ -288,7 +254,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                                           : "classic method: element to element only";
   uint64_t closure_rays = 0, pressed_samples = 0;
   double back_share = 0;
-  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples, &back_share);
+  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples, &back_share, tree);
   // Closed, the leaves' row and column sums could be balanced to 1 (link_transport.h). Off unless asked
   // for: with clusters pushing by direction and links by their shares, the row sums stay near 1, and
   // the balance, its factors bounded, no longer converged on office-floor, made it less accurate

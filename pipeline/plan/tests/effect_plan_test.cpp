@@ -58,6 +58,13 @@ TEST(EffectPlan, FacesPressedTogetherDoNotOpenAScene) {
   EXPECT_TRUE(is_closed(closed, RayScene(closed), rays_cast, pressed));
   EXPECT_GT(pressed, 0u);
   EXPECT_LT(pressed, rays_cast);
+  {  // with the bake's cluster tree given instead of one made for the search: the same answer
+    uint64_t rays_given = 0, pressed_given = 0;
+    const ClusterTree tree = build_cluster_tree(closed);
+    EXPECT_TRUE(is_closed(closed, RayScene(closed), rays_given, pressed_given, nullptr, &tree));
+    EXPECT_EQ(pressed_given, pressed);
+    EXPECT_EQ(rays_given, rays_cast);
+  }
   Scene lifted = closed;  // 1 cm above the floor, the bottom sees the floor: nothing pressed
   for (size_t i = closed.polygons.size() - 6; i < closed.polygons.size(); ++i)
     for (int k = 0; k < 4; ++k) lifted.polygons[i].v[k].z += 0.01;

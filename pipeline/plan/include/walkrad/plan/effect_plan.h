@@ -55,10 +55,12 @@ struct EffectPlan {
 };
 
 // overrides: effect name → "on" or "off" (InputError naming --effect for an unknown name or value).
-// volumes: the scene's volume clusters (null: none looked for).
+// volumes: the scene's volume clusters (null: none looked for). tree: the scene's cluster tree, for
+// is_closed (null: it makes its own where it needs one).
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
                         bool view_independent, const std::string& method,
-                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr);
+                        const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr,
+                        const ClusterTree* tree = nullptr);
 
 // The gather entry: on where the hierarchical method meets an emitting polygon and viewpoints; overrides as
 // plan_effects'.
@@ -85,10 +87,11 @@ bool is_convex_enclosure(const Scene& scene);
 // one-sided polygon absorbs from behind): the rays from at most kClosedBackShare of the surfaces' area
 // may (the floor under a book with no bottom face), a larger share opens the scene (MGF office3, whose
 // polygons are one-sided: 23%; scaled to 1, its rows made it 8.8% too bright). back_share: that share,
-// as far as the test went. Deterministic.
+// as far as the test went. tree: the scene's cluster tree, which finds the polygons a point may be
+// pressed against (null: one is made at the first such search). Deterministic.
 inline constexpr double kClosedBackShare = 0.05;
 bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, uint64_t& pressed_samples,
-               double* back_share = nullptr);
+               double* back_share = nullptr, const ClusterTree* tree = nullptr);
 
 // The colour channels (0 red, 1 green, 2 blue) in which no polygon absorbs: ρ + τ ≥ 1 on every one.
 // In a closed scene such a channel has no finite radiosity (each bounce returns all the light: the
