@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("--quality", quality, "hierarchical: draft, medium, high (the default) or final: a preset --error")
       ->check(CLI::IsMember({"draft", "medium", "high", "final"}))->excludes(error_opt);
   bake_cmd->add_option("--solver", bs.solver,
-                       "gauss-seidel (both methods), jacobi (hierarchical) or southwell (classic: progressive refinement, "
-                       "shooting the most unshot power first)")
+                       "gauss-seidel (both methods), jacobi (hierarchical; under mpirun it divides the links among the "
+                       "ranks) or southwell (classic: progressive refinement, shooting the most unshot power first)")
       ->check(CLI::IsMember({"gauss-seidel", "jacobi", "southwell"}))->capture_default_str();
   bake_cmd->add_option("--form-factors", bs.form_factors,
                        "classic: contour (contour formula × Embree rays) or hemicube (Cohen & Greenberg 1985, z-buffered)")

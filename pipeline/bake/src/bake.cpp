@@ -277,7 +277,8 @@ BakeSummary bake(const BakeSettings& s) {
   for (size_t r = 0; r < work.size(); ++r) {
     per_rank.push_back({{"rank", r}, {"items", work[r].items}, {"links", work[r].links}, {"rays", work[r].rays},
                         {"compute_seconds", work[r].compute_seconds}, {"exchange_seconds", work[r].exchange_seconds},
-                        {"bytes_sent", work[r].bytes_sent}, {"peak_memory_mb", work[r].peak_memory_mb}});
+                        {"bytes_sent", work[r].bytes_sent}, {"peak_memory_mb", work[r].peak_memory_mb},
+                        {"links_held", work[r].links_held}, {"link_mb_peak", double(work[r].link_bytes_peak) / double(1 << 20)}});
     busiest = std::max(busiest, work[r].compute_seconds);
     mean += work[r].compute_seconds / double(work.size());
   }

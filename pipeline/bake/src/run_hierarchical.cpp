@@ -7,6 +7,7 @@
 
 #include "method_run.h"
 #include "walkrad/core/progress.h"
+#include "walkrad/core/ranks.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
@@ -133,6 +134,15 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
       checkpoint.write(rounds, write_state);
     };
   }
+  // Over several ranks, say when every rank holds every link, and why (link_owners.h).
+  if (ranks().size > 1 && ranks().rank == 0 && s.progress) {
+    const char* why = hs.gauss_seidel ? "Gauss-Seidel sweeps: --solver jacobi divides them"
+                      : hs.closed     ? "the closure balance (--effect closure=on) reads them across ranks"
+                      : hs.twins      ? "transmission reads them across ranks"
+                      : hs.save_round ? "--checkpoint saves them in one file"
+                                      : nullptr;
+    if (why) std::fprintf(stderr, "walkrad: every rank holds every link (%s)\n", why);
+  }
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;
@@ -232,7 +242,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
-                      {"bytes_exchanged", it.bytes_exchanged}});
+                      {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast},
               {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
               {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},
@@ -245,6 +255,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
               {"above_tolerance", stats.above_tolerance},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
               {"resumed_after_round", resumed_rounds},
+              {"links_divided", stats.divided},  // among ranks (walkrad/hierarchical/link_owners.h)
+              {"link_mb_peak", double(stats.link_bytes_peak) / double(1 << 20)},  // this rank's
               {"corrections", stats.corrections},
               {"balance", {{"iterations", stats.balance_iterations}, {"row_error", stats.balance_row_error},
                            {"column_error", stats.balance_column_error}, {"unbalanced_leaves", stats.balance_unbalanced},

@@ -66,6 +66,17 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
   return all;
 }
 
+void all_sum(int64_t* data, size_t count) {
+  if (!g_started || g_ranks.size == 1) return;
+  const auto start = std::chrono::steady_clock::now();
+  constexpr size_t kPiece = size_t(1) << 27;  // MPI counts are ints
+  for (size_t at = 0; at < count; at += kPiece)
+    MPI_Allreduce(MPI_IN_PLACE, data + at, int(std::min(kPiece, count - at)), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  g_work.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  g_work.bytes_sent += uint64_t(count) * 8;
+  g_bytes += uint64_t(count) * 16;  // its own sent, the sum received
+}
+
 void broadcast(std::vector<uint8_t>& bytes) {
   if (!g_started || g_ranks.size == 1) return;
   uint64_t size = bytes.size();

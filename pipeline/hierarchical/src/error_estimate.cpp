@@ -177,6 +177,13 @@ void Solver::measure_variation() {
       left_[i] = float(std::sqrt(squares / double(kids) / 3.0));
     }
   });
+  // A source's variation is read by the receivers that link to it, wherever they are held.
+  share_element_values<std::array<float, 2>>(
+      h_, h_.nodes().size(), [&](uint32_t i) { return std::array<float, 2>{variation_[i], left_[i]}; },
+      [&](uint32_t i, const std::array<float, 2>& v) {
+        variation_[i] = v[0];
+        left_[i] = v[1];
+      });
 }
 
 double Solver::emitted_inner(uint32_t i) const {
@@ -269,6 +276,7 @@ void Solver::measure_left_error() {
   stats_.white = white_;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i) {
     HNode& n = h_[i];
+    if (!here(i)) continue;  // its holder's, below
     if (n.links.empty()) {
       n.error = 0;
       continue;
@@ -284,9 +292,11 @@ void Solver::measure_left_error() {
       sq += source * source + noise * noise;
     }
     n.error = float(std::sqrt(sq));
-    const double ratio = n.error / std::max(tolerance(i), 1e-300);
-    if (ratio > 1) ++stats_.above_tolerance;
   }
+  share_element_values<float>(h_, h_.nodes().size(), [&](uint32_t i) { return h_[i].error; },
+                              [&](uint32_t i, float e) { h_[i].error = e; });
+  for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+    if (h_[i].error / std::max(tolerance(i), 1e-300) > 1) ++stats_.above_tolerance;
 }
 
 }  // namespace walkrad::hierarchical_detail

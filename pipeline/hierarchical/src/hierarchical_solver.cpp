@@ -14,6 +14,13 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       : h_(h), rays_(rays), s_(s), stats_(stats) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
+  // A divided solve (link_owners.h) needs Jacobi sweeps (Gauss-Seidel's order runs through every
+  // polygon in turn), and neither the closure balance nor transmission, whose steps read links
+  // across polygons. Checkpoints hold every link in one file: under them every rank holds all.
+  divisible_ = !s_.gauss_seidel && !s_.closed && !s_.twins;
+  divided_ = divisible_ && ranks().size > 1 && !s_.save_round && !s_.resume;
+  if (divided_) h_.owners() = divide_polygons(h_.tree(), ranks().size, ranks().rank);
+  stats_.divided = divided_;
   // Every cluster exists from the start; only they gather by direction (192 bytes each: kept by node,
   // a 150-room level's 748,742 element roots held 144 MB of them unused).
   cube_slot_.assign(h_.nodes().size(), UINT32_MAX);
@@ -71,7 +78,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   bool& converged_before = state.converged_before;
   for (int it = state.next_round; !state.finished && it < s_.max_iterations; ++it) {
     IterationStats is;
-    const size_t before = pending_.size();
+    const uint64_t before = new_link_count();
     const size_t elements_before = h_.element_count();
     if (it == 0) {
       if (importance_) {  // the close-pair rule weighs by direct importance (close_matters)
@@ -89,8 +96,13 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     }
     if (s_.check_limits) s_.check_limits("refinement", 0);
     if (lights()) compute_missing_direct();  // elements the refinement created
-    is.new_links = pending_.size() - before;
+    is.new_links = new_link_count() - before;
+    note_link_memory();
     evaluate_pending(is);
+    // Divided: the polygons dealt again by the links of the first rounds that link elements (the later
+    // rounds refine where these are; the first deal, blind, left office-floor's 32 rooms 57/43%).
+    if (divided_ && it >= 1) rebalance_links(h_);
+    note_link_memory();
     if (s_.check_limits) s_.check_limits("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
     if (s_.closed_rows && !s_.closed && is.new_links > 0) {
@@ -111,6 +123,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const int sweeps = last ? 1000 : s_.sweeps;
     const bool correct = s_.accelerate && s_.indirect && !s_.twins;
     int interval = 0, wait = 0;  // sweeps between corrections, and before the next one
+    const uint64_t sweeps_from = ranks_bytes_exchanged();
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       ++is.sweeps;
       // Importance steers the refinement, and the last round's sweeps past a round's own refine nothing
@@ -131,6 +144,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       if (is.change <= s_.tolerance) break;
     }
     converged_before = is.change <= s_.tolerance;
+    is.sweep_bytes = ranks_bytes_exchanged() - sweeps_from;
     record(is, progress);
     const bool done = last && !settled && converged_before;
     if (done) stats_.converged = true;
@@ -138,6 +152,10 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     if (done) break;
   }
   measure_left_error();
+  rank_work().links_held = 0;
+  for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+    if (here(i)) rank_work().links_held += h_[i].links.size();
+  join_links(h_);
 }
 
 void Solver::save_round(RoundState& state, int round, bool finished) {

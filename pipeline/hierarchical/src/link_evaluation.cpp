@@ -49,6 +49,10 @@ void Solver::compute_missing_direct() {
 }
 
 void Solver::evaluate_pending(IterationStats& is) {
+  if (divided_) {
+    evaluate_divided(is);
+    return;
+  }
   // Under mpirun each rank evaluates one contiguous block of the round's links, of about equal cost
   // (rays or samples, plus one), and every rank gathers every block (ranks.h): the links and their
   // order are the same on every rank, and so is each link's result.

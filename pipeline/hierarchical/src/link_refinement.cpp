@@ -84,17 +84,16 @@ bool Solver::close_pair(uint32_t i, uint32_t j) const {
 std::vector<uint8_t> Solver::under_close_pairs() const {
   std::vector<uint8_t> out(h_.nodes().size(), 0);
   if (!importance_) return out;  // every close pair matters (close_matters): none is left whole
-  for (uint32_t k = 0; k < out.size(); ++k) {  // parents first
-    const HNode& n = h_[k];
-    if (n.parent >= 0 && out[size_t(n.parent)]) {
-      out[k] = 1;
-      continue;
-    }
-    for (const Link& l : n.links)
+  for (uint32_t k = 0; k < out.size(); ++k)  // its own links (where they are held)
+    for (const Link& l : h_[k].links)
       if (close_pair(k, l.source)) {
         out[k] = 1;
         break;
       }
+  share_element_values<uint8_t>(h_, out.size(), [&](uint32_t k) { return out[k]; }, [&](uint32_t k, uint8_t v) { out[k] = v; });
+  for (uint32_t k = 0; k < out.size(); ++k) {  // parents first
+    const int32_t parent = h_[k].parent;
+    if (parent >= 0 && out[size_t(parent)]) out[k] = 1;
   }
   return out;
 }
@@ -145,7 +144,7 @@ void Solver::refine_first() {
   if (s_.check_limits) s_.check_limits("refinement", (pending_.size() + total) * sizeof(Pending));
   pending_.reserve(pending_.size() + total);
   for (size_t k = 0; k < pairs.size(); ++k) {
-    for (const NewLink& f : found[k]) pending_.push_back({f.receiver, f.source, f.need_rays, f.samples, f.volume});
+    for (const NewLink& f : found[k]) add_pending({f.receiver, f.source, f.need_rays, f.samples, f.volume});
     stats_.refinements += splits[k];
     std::vector<NewLink>().swap(found[k]);
   }
@@ -229,7 +228,7 @@ void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<u
   std::vector<Pending>& pending = *out.pending;
   if (s_.check_limits && pending.size() == pending.capacity() && pending.size() >= 65536)
     s_.check_limits("refinement", 2 * pending.capacity() * sizeof(Pending));
-  pending.push_back({i, j, need_rays, samples, volume});
+  add_pending({i, j, need_rays, samples, volume});
 }
 
 std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
@@ -282,7 +281,7 @@ void Solver::split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& 
   for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(out, h_.child(h_[i], k), j, &candidates);
 }
 
-Solver::ReceiverPlan Solver::plan_receiver(uint32_t i) const {
+Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) const {
   ReceiverPlan plan;
   const std::vector<Link>& links = h_[i].links;
   if (links.empty()) return plan;
@@ -290,6 +289,7 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i) const {
   // than its tolerance: every link goes down to the children.
   if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
     plan.split_receiver = true;
+    if (!with_candidates) return plan;
     plan.candidates.resize(links.size());
     for (size_t k = 0; k < links.size(); ++k) plan.candidates[k] = link_candidates(i, links[k]);
     return plan;
@@ -305,6 +305,7 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i) const {
       plan.action[k] = kRecast;
     } else if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
       plan.action[k] = kSplit;
+      if (!with_candidates) continue;
       if (plan.candidates.empty()) plan.candidates.resize(links.size());  // most receivers split none
       plan.candidates[k] = link_candidates(i, l);
     }
@@ -320,18 +321,32 @@ void Solver::refine_existing() {
   // the decisions and the split links' candidate lists (searched from the tree's root: a quarter of the
   // refinement's time) are made in parallel, a batch of receivers at a time, and applied in order:
   // nodes and links come out exactly as from one serial pass, whatever the thread count.
+  // Divisible (Jacobi sweeps, link_owners.h): the element receivers' plans are made first, all from
+  // the state before the pass, by the ranks that hold their links, and sent to every rank.
   constexpr size_t kBatch = 1024;
   const size_t n = h_.nodes().size();
+  std::vector<uint32_t> plan_of;
+  std::vector<RemotePlan> remote;
+  if (divisible_) exchange_plans(plan_of, remote);
+  auto remote_plan = [&](size_t at) { return divisible_ && !h_[uint32_t(at)].cluster; };
   std::vector<ReceiverPlan> plans;
   for (size_t first = 0; first < n; first += kBatch) {
     const size_t last = std::min(n, first + kBatch);
     plans.assign(last - first, ReceiverPlan{});
     tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 16), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t at = r.begin(); at != r.end(); ++at) plans[at - first] = plan_receiver(uint32_t(at));
+      for (size_t at = r.begin(); at != r.end(); ++at) {
+        if (!remote_plan(at)) plans[at - first] = plan_receiver(uint32_t(at));
+        else if (plan_of[at] != UINT32_MAX) plans[at - first].candidates = remote_candidates(uint32_t(at), remote[plan_of[at]]);
+      }
     });
     for (size_t at = first; at < last; ++at) {
       const uint32_t i = uint32_t(at);
       if (s_.check_limits && i % 4096 == 4095) s_.check_limits("refinement", 0);
+      if (remote_plan(at)) {
+        if (plan_of[at] != UINT32_MAX) apply_plan(i, remote[plan_of[at]], plans[at - first].candidates);
+        plans[at - first] = ReceiverPlan{};
+        continue;
+      }
       if (h_[i].links.empty()) continue;
       ReceiverPlan& plan = plans[at - first];
       std::vector<Link> links = std::move(h_[i].links);
@@ -348,7 +363,7 @@ void Solver::refine_existing() {
         if (plan.action[k] == kRecast) {
           --stats_.links;
           ++stats_.recast;
-          pending_.push_back({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
+          add_pending({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
         } else if (plan.action[k] == kSplit) {
           --stats_.links;
           static const std::vector<uint32_t> kNone;

@@ -10,6 +10,7 @@
 
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
+#include "walkrad/hierarchical/link_owners.h"
 
 namespace walkrad {
 
@@ -104,6 +105,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, polygons, 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<Item> stack;
     for (size_t p = r.begin(); p != r.end(); ++p) {
+      if (!h.owners().holds_polygon(uint32_t(p))) continue;  // its rank's (link_owners.h)
       const uint32_t root = h.polygon_root(uint32_t(p));
       const HNode& top = nodes[root];
       Item first{root, {}, 0.0};
@@ -140,6 +142,16 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
       }
     }
   });
+  struct Delivered {
+    std::array<Vec3, N> H;
+    double row;
+  };
+  share_element_values<Delivered>(
+      h, nodes.size(), [&](uint32_t k) { return Delivered{d.H[k], d.row[k]}; },
+      [&](uint32_t k, const Delivered& v) {
+        d.H[k] = v.H;
+        d.row[k] = v.row;
+      });
   return d;
 }
 

@@ -20,16 +20,21 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance) {
     facing_bt_ = facing_radiosity(h_, [&](uint32_t k) { return nodes[k].Bt; });
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i)
-      if (!s_.gauss_seidel || nodes[i].cluster) gather(nodes[i]);
+      if ((!s_.gauss_seidel || nodes[i].cluster) && here(uint32_t(i))) gather(nodes[i]);
   });
+  if (divided_) share_gathered();
   change_ = 0;
   is.emitted = is.absorbed = is.residual = Vec3{};
   is.clamped_leaves = 0;
   push_pull(h_.root(), Vec3{}, 0.0, DirectionalIrradiance{}, is);
   if (importance_ && with_importance) {
-    for (HNode& n : nodes) n.Ig = 0;
-    for (const HNode& n : nodes)  // sequential: sums in a fixed order
-      for (const Link& l : n.links) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
+    if (divisible_) {
+      shoot_importance_exactly();
+    } else {
+      for (HNode& n : nodes) n.Ig = 0;
+      for (const HNode& n : nodes)  // sequential: sums in a fixed order
+        for (const Link& l : n.links) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
+    }
     push_pull_importance(h_.root(), 0.0);
   }
   return change_;

@@ -13,6 +13,7 @@
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
+#include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/transmission.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/visibility/shaft.h"
@@ -38,6 +39,20 @@ struct Pending {
       : receiver(receiver_), source(source_), samples(samples_), need_rays(need_rays_), volume(volume_) {}
 };
 static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
+
+// A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
+// divided_solve.cpp): whether the receiver splits, and every link it does not keep (all of them when it
+// splits), in the links' order.
+struct RemoteLink {
+  uint32_t index, source;
+  uint16_t samples;
+  uint8_t rays;
+  uint8_t action;  // Solver::LinkAction
+};
+struct RemotePlan {
+  bool split_receiver = false;
+  std::vector<RemoteLink> links;
+};
 
 class Solver {
  public:
@@ -236,7 +251,39 @@ class Solver {
     std::vector<LinkAction> action;                 // by link, unless the receiver splits
     std::vector<std::vector<uint32_t>> candidates;  // by link, where one is split: link_candidates
   };
-  ReceiverPlan plan_receiver(uint32_t i) const;
+  // with_candidates false: the actions alone (a divided solve sends them, divided_solve.cpp).
+  ReceiverPlan plan_receiver(uint32_t i, bool with_candidates = true) const;
+
+  // --- divided_solve.cpp: the links divided among ranks (link_owners.h) ---
+
+  // Whether this rank keeps the links of receiver i (always, unless the solve is divided).
+  bool here(uint32_t i) const { return !divided_ || holds_links(h_, i); }
+  // Appends a new link to the round's list where this rank keeps its receiver's links; counts it
+  // either way (the round's new links are the same count on every rank).
+  void add_pending(const Pending& p) {
+    if (here(p.receiver)) pending_.push_back(p);
+    else ++elsewhere_;
+  }
+  uint64_t new_link_count() const { return pending_.size() + elsewhere_; }
+
+  // Every element receiver's plan with something to do, from the rank that holds its links, to every
+  // rank: plan_of[i] indexes plans (UINT32_MAX: keep every link).
+  void exchange_plans(std::vector<uint32_t>& plan_of, std::vector<RemotePlan>& plans) const;
+  // The candidate lists the plan's split links need (link_candidates), computed on every rank.
+  std::vector<std::vector<uint32_t>> remote_candidates(uint32_t i, const RemotePlan& plan) const;
+  // What refine_existing does with element receiver i's plan: on every rank the same splits and new
+  // links; where its links are held, the kept ones stay.
+  void apply_plan(uint32_t i, const RemotePlan& plan, const std::vector<std::vector<uint32_t>>& candidates);
+  // evaluate_pending, divided: this rank's receivers' links here, the clusters' by blocks shared.
+  void evaluate_divided(IterationStats& is);
+  // The gather's results (H, Fsum, and the shares Hp, Fp its parent pushed) of every element node,
+  // from the rank that gathered it.
+  void share_gathered();
+  // Importance shot along the links in 2^-k units of its total: integer sums, the same in any order,
+  // whatever rank adds which link (Jacobi sweeps).
+  void shoot_importance_exactly();
+  // The most bytes this rank's links and new-link list hold now, kept as the peak (stats, ranks.h).
+  void note_link_memory();
 
   // Replaces link l (to receiver i) by links from the receiver's children; candidates: the pair's.
   void split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates);
@@ -337,6 +384,11 @@ class Solver {
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
   std::vector<Pending> pending_;
+  // Jacobi sweeps, no closure balance, no transmission: the steps that read links run as a divided
+  // solve runs them, whatever the rank count, so that its result is the same (link_owners.h).
+  bool divisible_ = false;
+  bool divided_ = false;   // divisible, over several ranks, no checkpoints: links divided among ranks
+  uint64_t elsewhere_ = 0; // this round's new links whose receivers another rank holds
   static thread_local std::vector<double> kernel_scratch_;
   static thread_local std::vector<ClusterSample> cluster_scratch_;
   std::vector<uint8_t> two_sided_;  // by node: a cluster holding a transmitting polygon or a twin

@@ -5,8 +5,9 @@
 // and of the output vertices' radiosity (surface_mesher.cpp), by contiguous blocks of about equal cost
 // in their own order, each rank's results gathered by every rank (MPI_Allgatherv). Each result depends
 // only on its own inputs (a link's random numbers are seeded by its two nodes, a vertex's by its
-// position), so the bake does not depend on the number of ranks. Everything else (the scene, the
-// refinement, the sweeps) is replicated; rank 0 alone writes the bake (docs/scaling.md).
+// position), so the bake does not depend on the number of ranks. With Jacobi sweeps the solve's links
+// are divided as well (walkrad/hierarchical/link_owners.h). Everything else (the scene, the nodes) is
+// replicated; rank 0 alone writes the bake (docs/scaling.md).
 #pragma once
 
 #include <chrono>
@@ -36,6 +37,10 @@ const Ranks& ranks();
 // Every rank's bytes, in rank order, to every rank (MPI_Allgatherv); with one rank, `mine` itself.
 std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 
+// Every rank's integers summed, element by element, into every rank's (MPI_Allreduce): integer sums
+// do not depend on the order the ranks are added in. With one rank nothing happens.
+void all_sum(int64_t* data, size_t count);
+
 // Rank 0's bytes to every rank (MPI_Bcast): rank 0 reads a file that the other hosts need not have.
 // With one rank, nothing happens.
 void broadcast(std::vector<uint8_t>& bytes);
@@ -56,6 +61,9 @@ struct RankWork {
   uint64_t items = 0, bytes_sent = 0;
   uint64_t links = 0, rays = 0;  // of the items, the links it evaluated and their visibility rays
   uint64_t peak_memory_mb = 0;   // its peak resident memory (set by all_rank_work)
+  // A divided solve (link_owners.h): the links it held at the end of the solve, and the most bytes its
+  // links and its list of new links took at once (measured between the steps of each round).
+  uint64_t links_held = 0, link_bytes_peak = 0;
   double compute_seconds = 0, exchange_seconds = 0;
 };
 RankWork& rank_work();  // this rank's, added to by the divided stages

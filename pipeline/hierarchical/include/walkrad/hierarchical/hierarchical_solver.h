@@ -101,6 +101,7 @@ struct IterationStats {
   Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
   uint64_t clamped_leaves = 0;         // leaves whose row sum Σ F exceeded 1.5 (irradiance scaled back)
   uint64_t bytes_exchanged = 0;        // under mpirun: bytes this rank sent and received this round (ranks.h)
+  uint64_t sweep_bytes = 0;            // of which in its sweeps (a divided solve's node values, link_owners.h)
 };
 
 struct HierarchicalStats {
@@ -126,6 +127,10 @@ struct HierarchicalStats {
   // the grid, rays against the rest if anything else is in the shaft).
   uint64_t exact_links = 0, volume_links = 0;
   uint64_t grid_segments = 0;          // transmittance integrations through the extinction grid
+  // The most bytes links and the round's list of new links took at once (on this rank: a divided
+  // solve keeps only its receivers' links, link_owners.h), and whether the links were divided.
+  uint64_t link_bytes_peak = 0;
+  bool divided = false;
 };
 
 // The default smallest element: the median input polygon's side (by area) / 128, squared.

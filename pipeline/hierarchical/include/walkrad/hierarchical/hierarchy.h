@@ -98,6 +98,14 @@ struct ViewHit {
   uint32_t view = 0;  // index of the viewpoint it came from
 };
 
+// Which rank holds the links of each input polygon's elements (link_owners.h): a divided solve.
+struct LinkOwners {
+  std::vector<uint16_t> rank;  // by input polygon; empty: every link on this rank
+  uint16_t me = 0;
+  bool divided() const { return !rank.empty(); }
+  bool holds_polygon(uint32_t polygon) const { return rank.empty() || rank[polygon] == me; }
+};
+
 class Hierarchy {
  public:
   // sample_textures: elements take their textures' mean over their own area (texture_sampling.h).
@@ -144,6 +152,10 @@ class Hierarchy {
   void save_state(ByteWriter& out) const;
   void load_state(ByteReader& in);
 
+  // Which links this rank holds (a divided solve, link_owners.h); by default all of them.
+  const LinkOwners& owners() const { return owners_; }
+  LinkOwners& owners() { return owners_; }
+
  private:
   uint32_t add_element(const Polygon& shape, uint32_t polygon, int32_t parent, uint8_t depth);
   uint32_t add_cluster(uint32_t tree_node, int32_t parent);
@@ -160,6 +172,7 @@ class Hierarchy {
   std::vector<ViewHit> hits_;
   std::vector<uint32_t> polygon_root_;        // grouped by element, each element's hits contiguous
   size_t element_count_ = 0;
+  LinkOwners owners_;
 };
 
 // Σ A_k max(0, n_k·d) over a node's surfaces for a unit direction d, from HNode::facing (exact where the
