@@ -1,7 +1,8 @@
 // The hierarchical solver's state and steps (hierarchical_solver.h), private to this stage. One class,
 // its methods in a file per concept: the rounds (hierarchical_solver.cpp), the refinement of links
 // (link_refinement.cpp), their form factors and visibility (link_evaluation.cpp), and the sweeps that
-// gather and push-pull radiosity and importance (solve_sweep.cpp).
+// gather and push-pull radiosity and importance (solve_sweep.cpp), and those steps as a solve whose
+// links are divided among ranks runs them (divided_solve.cpp).
 #pragma once
 
 #include <array>
