@@ -2,7 +2,7 @@
 """Checkpoints of the solve (issue 28, --checkpoint DIR and --resume; pipeline/bake/src/checkpoint_file.h):
 the Cornell box's default bake, killed (SIGKILL) right after its 3rd or 5th refinement round, resumed in
 one process or over 2 ranks, or stopped by --max-seconds and resumed, gives chunks and a manifest
-byte-identical to a bake that ran through; a bake with --checkpoint is itself unchanged and removes its
+byte-identical to a bake that ran through (with --solver jacobi too, killed over 2 ranks); a bake with --checkpoint is itself unchanged and removes its
 checkpoint once written; a checkpoint from another build, scene or setting, or a damaged one, is refused
 with exit code 3, naming the file and the difference, and nothing is written.
 Usage: test_checkpoint.py WALKRAD SOURCE_DIR WORK_DIR"""
@@ -64,6 +64,18 @@ for kill_ranks, round_, resume_ranks in ((1, 3, 1), (2, 3, 1), (1, 5, 2)):
           f"{'byte-identical' if ok else 'DIFFERS'}")
     if not ok or resumed != round_ or os.path.exists(os.path.join(cp, "solve.checkpoint")):
         failures.append(f"{name}: resumed: exit {r.returncode}, same {ok}, resumed after {resumed}: {r.stderr.strip()[-300:]}")
+
+# With --solver jacobi a bake over several ranks divides its links, but not under --checkpoint (the file
+# holds every link): killed over 2 ranks after round 3 and resumed in one process, it is still the Jacobi
+# bake of one process, which the divided one is too (test_ranks.py).
+jacobi_plain, out, cp = (os.path.join(work, n) for n in ("jacobi-plain", "jacobi-killed", "cp-jacobi"))
+r0 = bake(jacobi_plain, "--solver", "jacobi")
+r1 = bake(out, "--solver", "jacobi", "--checkpoint", cp, ranks=2, kill_after=3)
+r2 = bake(out, "--solver", "jacobi", "--checkpoint", cp, "--resume")
+ok = r0.returncode == 0 and r1.returncode != 0 and r2.returncode == 0 and same(jacobi_plain, out)
+print(f"jacobi, killed over 2 ranks after round 3, resumed in one process: {'byte-identical' if ok else 'DIFFERS'}")
+if not ok:
+    failures.append(f"jacobi killed and resumed: exits {r0.returncode}, {r1.returncode}, {r2.returncode}: {r2.stderr.strip()[-300:]}")
 
 # A bake stopped by its own time cap (exit 6, between rounds) goes on with --resume from the last round
 # it saved (none if it stopped before one: the same bake either way).
