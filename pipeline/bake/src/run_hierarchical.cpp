@@ -135,14 +135,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     };
   }
   // Over several ranks, say when every rank holds every link, and why (link_owners.h).
-  if (ranks().size > 1 && ranks().rank == 0 && s.progress) {
-    const char* why = hs.gauss_seidel ? "Gauss-Seidel sweeps: --solver jacobi divides them"
-                      : hs.closed     ? "the closure balance (--effect closure=on) reads them across ranks"
-                      : hs.twins      ? "transmission reads them across ranks"
-                      : hs.save_round ? "--checkpoint saves them in one file"
-                                      : nullptr;
-    if (why) std::fprintf(stderr, "walkrad: every rank holds every link (%s)\n", why);
-  }
+  if (ranks().size > 1 && ranks().rank == 0 && s.progress)
+    if (const char* why = undivided_because(hs)) std::fprintf(stderr, "walkrad: every rank holds every link (%s)\n", why);
   HierarchicalStats stats;
   const auto t0 = Clock::now();
   auto round_start = t0;

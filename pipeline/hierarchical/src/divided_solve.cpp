@@ -94,7 +94,7 @@ std::vector<std::vector<uint32_t>> Solver::remote_candidates(uint32_t i, const R
   return out;
 }
 
-void Solver::apply_plan(uint32_t i, const RemotePlan& plan, const std::vector<std::vector<uint32_t>>& candidates) {
+void Solver::apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vector<uint32_t>>& candidates) {
   std::vector<Link> links;
   if (here(i)) {
     links = std::move(h_[i].links);
@@ -123,9 +123,8 @@ void Solver::apply_plan(uint32_t i, const RemotePlan& plan, const std::vector<st
       add_pending({i, r.source, (r.rays & 1) != 0, kHiddenRecast * int(r.samples), (r.rays & 2) != 0});
     } else {
       static const std::vector<uint32_t> kNone;
-      std::vector<uint32_t> own = candidates[k];
       Refinement out = serial_refinement();
-      refine(out, i, r.source, ray_free(as_link(r)) ? &kNone : nullptr, true, &own);
+      refine(out, i, r.source, ray_free(as_link(r)) ? &kNone : nullptr, true, &candidates[k]);
     }
   }
 }
@@ -139,13 +138,6 @@ void Solver::evaluate_divided(IterationStats& is) {
     else pending_[kept++] = pending_[k];
   }
   pending_.erase(pending_.begin() + std::ptrdiff_t(kept), pending_.end());
-  auto evaluate_range = [&](std::vector<Pending>& list, size_t begin, size_t end) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
-      std::vector<RayScene::Segment> segments;
-      std::vector<double> visible, weights;
-      for (size_t k = r.begin(); k != r.end(); ++k) evaluate(list[k], segments, visible, weights);
-    });
-  };
   const auto start = std::chrono::steady_clock::now();
   evaluate_range(pending_, 0, pending_.size());
   rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -161,50 +153,13 @@ void Solver::evaluate_divided(IterationStats& is) {
   share_blocks(shared, blocks);
   // What the links count: this rank's summed over the ranks (integers: any order), the clusters' as
   // every rank has them.
-  auto kept_link = [](const Pending& p) { return p.F > 0 || p.sigma > 0; };
-  auto tally = [&](const std::vector<Pending>& list, int64_t* c) {
-    for (const Pending& p : list) {
-      c[0] += p.rays;
-      if (p.volume) {
-        ++c[1];
-        c[2] += p.grid_segments;
-      } else if (p.need_rays) {
-        ++c[3];
-      } else {
-        ++c[4];
-      }
-      c[5] += h_[p.receiver].cluster || h_[p.source].cluster;
-      c[6] += kept_link(p);
-    }
-  };
-  int64_t counts[7] = {};
-  tally(pending_, counts);
-  if (divided_) all_sum(counts, 7);
-  tally(shared, counts);
-  stats_.rays += uint64_t(counts[0]);
-  is.rays += uint64_t(counts[0]);
-  stats_.volume_links += uint64_t(counts[1]);
-  stats_.grid_segments += uint64_t(counts[2]);
-  stats_.exact_links += uint64_t(counts[3]);
-  stats_.unoccluded_links += uint64_t(counts[4]);
-  stats_.monte_carlo_links += uint64_t(counts[5]);
-  stats_.links += uint64_t(counts[6]);
-  // Each receiver's list grows once, to its exact size (as evaluate_pending).
-  for (const std::vector<Pending>* list : {&shared, &pending_}) {
-    std::vector<uint32_t> added(h_.nodes().size(), 0);
-    for (const Pending& p : *list)
-      if (kept_link(p)) ++added[p.receiver];
-    for (size_t i = 0; i < added.size(); ++i)
-      if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
-    for (const Pending& p : *list) {
-      if (!kept_link(p)) continue;
-      Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
-             uint16_t(std::min(p.samples, 65535))};
-      l.seen = p.seen;
-      normalize_shares(h_, p.receiver, l);
-      h_[p.receiver].links.push_back(l);
-    }
-  }
+  LinkCounts counts = count_links(pending_);
+  all_sum(counts.data(), counts.size());
+  const LinkCounts clusters = count_links(shared);
+  for (size_t k = 0; k < counts.size(); ++k) counts[k] += clusters[k];
+  add_counts(counts, is);
+  store_links(shared);
+  store_links(pending_);
   std::vector<Pending>().swap(pending_);
   elsewhere_ = 0;
 }
@@ -215,7 +170,7 @@ void Solver::share_gathered() {
     double Fsum, Fp;
   };
   share_element_values<Gathered>(
-      h_, h_.nodes().size(), [&](uint32_t i) { const HNode& n = h_[i]; return Gathered{n.H, n.Hp, n.Fsum, n.Fp}; },
+      h_, [&](uint32_t i) { const HNode& n = h_[i]; return Gathered{n.H, n.Hp, n.Fsum, n.Fp}; },
       [&](uint32_t i, const Gathered& g) {
         HNode& n = h_[i];
         n.H = g.H;
@@ -240,7 +195,7 @@ void Solver::shoot_importance_exactly() {
       size[i] = sum;
     }
   });
-  share_element_values<double>(h_, nodes.size(), [&](uint32_t i) { return size[i]; }, [&](uint32_t i, double v) { size[i] = v; });
+  share_element_values(h_, size);
   double bound = 0;
   for (double v : size) bound += v;
   std::vector<double>().swap(size);

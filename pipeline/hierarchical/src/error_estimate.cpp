@@ -179,7 +179,7 @@ void Solver::measure_variation() {
   });
   // A source's variation is read by the receivers that link to it, wherever they are held.
   share_element_values<std::array<float, 2>>(
-      h_, h_.nodes().size(), [&](uint32_t i) { return std::array<float, 2>{variation_[i], left_[i]}; },
+      h_, [&](uint32_t i) { return std::array<float, 2>{variation_[i], left_[i]}; },
       [&](uint32_t i, const std::array<float, 2>& v) {
         variation_[i] = v[0];
         left_[i] = v[1];
@@ -293,7 +293,7 @@ void Solver::measure_left_error() {
     }
     n.error = float(std::sqrt(sq));
   }
-  share_element_values<float>(h_, h_.nodes().size(), [&](uint32_t i) { return h_[i].error; },
+  share_element_values<float>(h_, [&](uint32_t i) { return h_[i].error; },
                               [&](uint32_t i, float e) { h_[i].error = e; });
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
     if (h_[i].error / std::max(tolerance(i), 1e-300) > 1) ++stats_.above_tolerance;

@@ -14,11 +14,8 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       : h_(h), rays_(rays), s_(s), stats_(stats) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
-  // A divided solve (link_owners.h) needs Jacobi sweeps (Gauss-Seidel's order runs through every
-  // polygon in turn), and neither the closure balance nor transmission, whose steps read links
-  // across polygons. Checkpoints hold every link in one file: under them every rank holds all.
-  divisible_ = !s_.gauss_seidel && !s_.closed && !s_.twins;
-  divided_ = divisible_ && ranks().size > 1 && !s_.save_round && !s_.resume;
+  divisible_ = !indivisible_because(s_);
+  divided_ = ranks().size > 1 && !undivided_because(s_);
   if (divided_) h_.owners() = divide_polygons(h_.tree(), ranks().size, ranks().rank);
   stats_.divided = divided_;
   // Every cluster exists from the start; only they gather by direction (192 bytes each: kept by node,
@@ -193,6 +190,20 @@ thread_local std::vector<uint8_t> Solver::blocked_scratch_;
 thread_local std::vector<uint8_t> Solver::quadrant_scratch_;
 
 }  // namespace hierarchical_detail
+
+const char* indivisible_because(const HierarchicalSettings& s) {
+  // Gauss-Seidel's order runs through every polygon in turn; the closure balance's column sums and a
+  // transmitting leaf's twin read links of other polygons.
+  if (s.gauss_seidel) return "Gauss-Seidel sweeps: --solver jacobi divides them";
+  if (s.closed) return "the closure balance (--effect closure=on) reads them across ranks";
+  if (s.twins) return "transmission reads them across ranks";
+  return nullptr;
+}
+
+const char* undivided_because(const HierarchicalSettings& s) {
+  if (const char* why = indivisible_because(s)) return why;
+  return s.save_round || s.resume ? "--checkpoint saves them in one file" : nullptr;
+}
 
 double default_min_area(const Hierarchy& h) {
   // A 128th of the median input polygon's side, the median taken by area (the size of the surfaces

@@ -48,6 +48,54 @@ void Solver::compute_missing_direct() {
   direct_for(missing);
 }
 
+void Solver::evaluate_range(std::vector<Pending>& list, size_t begin, size_t end) const {
+  tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<RayScene::Segment> segments;
+    std::vector<double> visible, weights;
+    for (size_t k = r.begin(); k != r.end(); ++k) evaluate(list[k], segments, visible, weights);
+  });
+}
+
+Solver::LinkCounts Solver::count_links(const std::vector<Pending>& list) const {
+  LinkCounts c{};
+  for (const Pending& p : list) {
+    c[kRays] += p.rays;
+    ++c[p.volume ? kVolume : p.need_rays ? kExact : kUnoccluded];
+    if (p.volume) c[kGridSegments] += p.grid_segments;
+    c[kMonteCarlo] += h_[p.receiver].cluster || h_[p.source].cluster;
+    c[kKept] += kept(p);
+  }
+  return c;
+}
+
+void Solver::add_counts(const LinkCounts& c, IterationStats& is) {
+  for (uint64_t* rays : {&stats_.rays, &is.rays}) *rays += uint64_t(c[kRays]);
+  stats_.volume_links += uint64_t(c[kVolume]);
+  stats_.grid_segments += uint64_t(c[kGridSegments]);
+  stats_.exact_links += uint64_t(c[kExact]);
+  stats_.unoccluded_links += uint64_t(c[kUnoccluded]);
+  stats_.monte_carlo_links += uint64_t(c[kMonteCarlo]);
+  stats_.links += uint64_t(c[kKept]);
+}
+
+void Solver::store_links(const std::vector<Pending>& list) {
+  // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
+  // up to half of itself unused (docs/performance.md, "Links held at their size").
+  std::vector<uint32_t> added(h_.nodes().size(), 0);
+  for (const Pending& p : list)
+    if (kept(p)) ++added[p.receiver];
+  for (size_t i = 0; i < added.size(); ++i)
+    if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
+  for (const Pending& p : list) {
+    if (!kept(p)) continue;
+    Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
+           uint16_t(std::min(p.samples, 65535))};
+    l.seen = p.seen;
+    normalize_shares(h_, p.receiver, l);
+    h_[p.receiver].links.push_back(l);
+  }
+}
+
 void Solver::evaluate_pending(IterationStats& is) {
   if (divided_) {
     evaluate_divided(is);
@@ -58,46 +106,13 @@ void Solver::evaluate_pending(IterationStats& is) {
   // order are the same on every rank, and so is each link's result.
   const std::vector<size_t> blocks =
       run_my_block(pending_.size(), [&](size_t k) { return 1.0 + pending_[k].samples; }, [&](size_t begin, size_t end) {
-        tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
-          std::vector<RayScene::Segment> segments;
-          std::vector<double> visible;
-          std::vector<double> weights;
-          for (size_t k = r.begin(); k != r.end(); ++k) evaluate(pending_[k], segments, visible, weights);
-        });
+        evaluate_range(pending_, begin, end);
         rank_work().links += end - begin;
         for (size_t k = begin; k < end; ++k) rank_work().rays += pending_[k].rays;
       });
   share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
-  // A wholly hidden link stays while it may still see something.
-  auto kept = [](const Pending& p) { return p.F > 0 || p.sigma > 0; };
-  // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
-  // up to half of itself unused (docs/performance.md, "Links held at their size").
-  std::vector<uint32_t> added(h_.nodes().size(), 0);
-  for (const Pending& p : pending_)
-    if (kept(p)) ++added[p.receiver];
-  for (size_t i = 0; i < added.size(); ++i)
-    if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
-  for (const Pending& p : pending_) {
-    stats_.rays += p.rays;
-    is.rays += p.rays;
-    if (p.volume) {
-      ++stats_.volume_links;
-      stats_.grid_segments += p.grid_segments;
-    } else if (p.need_rays) {
-      ++stats_.exact_links;
-    } else {
-      ++stats_.unoccluded_links;
-    }
-    if (h_[p.receiver].cluster || h_[p.source].cluster) ++stats_.monte_carlo_links;
-    if (kept(p)) {
-      Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
-             uint16_t(std::min(p.samples, 65535))};
-      l.seen = p.seen;
-      normalize_shares(h_, p.receiver, l);
-      h_[p.receiver].links.push_back(l);
-      ++stats_.links;
-    }
-  }
+  add_counts(count_links(pending_), is);
+  store_links(pending_);
   std::vector<Pending>().swap(pending_);  // its capacity too: the largest round's list is not kept
 }
 

@@ -8,11 +8,10 @@ namespace {
 
 // Element nodes' links from the ranks that send them (send(node)) to those that take them (take(node)):
 // each rank packs (node, count, links) for the nodes in [first, last) it sends, freeing them where
-// drop, every rank receives every pack (all_gather) and keeps what it takes. Returns the links it sent.
+// drop, every rank receives every pack (all_gather) and keeps what it takes.
 template <class Send, class Take>
-uint64_t pass_links(Hierarchy& h, size_t first, size_t last, Send send, Take take, bool drop) {
+void pass_links(Hierarchy& h, size_t first, size_t last, Send send, Take take, bool drop) {
   std::vector<uint8_t> mine;
-  uint64_t sent = 0;
   for (size_t i = first; i < last; ++i) {
     HNode& n = h[uint32_t(i)];
     if (n.cluster || n.links.empty() || !send(n)) continue;
@@ -21,7 +20,6 @@ uint64_t pass_links(Hierarchy& h, size_t first, size_t last, Send send, Take tak
     mine.resize(at + sizeof(head) + bytes);
     std::memcpy(mine.data() + at, head, sizeof(head));
     std::memcpy(mine.data() + at + sizeof(head), n.links.data(), bytes);
-    sent += n.links.size();
     if (drop) std::vector<Link>().swap(n.links);
   }
   const std::vector<uint8_t> all = all_gather(mine);
@@ -38,7 +36,6 @@ uint64_t pass_links(Hierarchy& h, size_t first, size_t last, Send send, Take tak
     }
     at += bytes;
   }
-  return sent;
 }
 
 }  // namespace
@@ -51,9 +48,9 @@ LinkOwners divide_polygons(const ClusterTree& tree, int ranks, int me) {
   return o;
 }
 
-uint64_t rebalance_links(Hierarchy& h) {
+void rebalance_links(Hierarchy& h) {
   LinkOwners& o = h.owners();
-  if (!o.divided()) return 0;
+  if (!o.divided()) return;
   const size_t polygons = o.rank.size();
   std::vector<int64_t> cost(polygons, 0);
   for (const HNode& n : h.nodes())
@@ -100,11 +97,10 @@ uint64_t rebalance_links(Hierarchy& h) {
                        {weight, position});
   }
   // The links that move, sent to their new ranks.
-  const uint64_t sent = pass_links(
+  pass_links(
       h, 0, h.nodes().size(), [&](const HNode& n) { return o.rank[n.polygon] == o.me && next[n.polygon] != o.me; },
       [&](const HNode& n) { return next[n.polygon] == o.me; }, true);
   o.rank = std::move(next);
-  return sent;
 }
 
 void join_links(Hierarchy& h) {

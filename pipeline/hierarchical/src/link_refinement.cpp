@@ -90,7 +90,7 @@ std::vector<uint8_t> Solver::under_close_pairs() const {
         out[k] = 1;
         break;
       }
-  share_element_values<uint8_t>(h_, out.size(), [&](uint32_t k) { return out[k]; }, [&](uint32_t k, uint8_t v) { out[k] = v; });
+  share_element_values(h_, out);
   for (uint32_t k = 0; k < out.size(); ++k) {  // parents first
     const int32_t parent = h_[k].parent;
     if (parent >= 0 && out[size_t(parent)]) out[k] = 1;

@@ -147,7 +147,7 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
     double row;
   };
   share_element_values<Delivered>(
-      h, nodes.size(), [&](uint32_t k) { return Delivered{d.H[k], d.row[k]}; },
+      h, [&](uint32_t k) { return Delivered{d.H[k], d.row[k]}; },
       [&](uint32_t k, const Delivered& v) {
         d.H[k] = v.H;
         d.row[k] = v.row;

@@ -274,7 +274,8 @@ class Solver {
   std::vector<std::vector<uint32_t>> remote_candidates(uint32_t i, const RemotePlan& plan) const;
   // What refine_existing does with element receiver i's plan: on every rank the same splits and new
   // links; where its links are held, the kept ones stay.
-  void apply_plan(uint32_t i, const RemotePlan& plan, const std::vector<std::vector<uint32_t>>& candidates);
+  // (candidates: taken, as refine takes its own list.)
+  void apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vector<uint32_t>>& candidates);
   // evaluate_pending, divided: this rank's receivers' links here, the clusters' by blocks shared.
   void evaluate_divided(IterationStats& is);
   // The gather's results (H, Fsum, and the shares Hp, Fp its parent pushed) of every element node,
@@ -296,6 +297,18 @@ class Solver {
 
   // Form factors of the new links, in parallel: each link draws from its own random stream.
   void evaluate_pending(IterationStats& is);
+  // list[begin, end) evaluated in parallel.
+  void evaluate_range(std::vector<Pending>& list, size_t begin, size_t end) const;
+  // A wholly hidden link stays while it may still see something.
+  static bool kept(const Pending& p) { return p.F > 0 || p.sigma > 0; }
+  // What a list of evaluated links adds to the statistics, as integers (a divided solve sums each
+  // rank's: any order), and the statistics so added.
+  enum LinkCount { kRays, kVolume, kGridSegments, kExact, kUnoccluded, kMonteCarlo, kKept, kLinkCounts };
+  using LinkCounts = std::array<int64_t, kLinkCounts>;
+  LinkCounts count_links(const std::vector<Pending>& list) const;
+  void add_counts(const LinkCounts& counts, IterationStats& is);
+  // The kept links of an evaluated list put at their receivers, each receiver's list grown once.
+  void store_links(const std::vector<Pending>& list);
 
   // What of each segment arrives: 0 or 1 from Embree (against the solid scene when the link sees
   // through volumes), times the transmittance through the extinction grid.

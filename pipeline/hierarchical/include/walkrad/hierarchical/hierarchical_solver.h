@@ -133,6 +133,13 @@ struct HierarchicalStats {
   bool divided = false;
 };
 
+// Why a solve over several ranks keeps every link on every rank instead of dividing them
+// (link_owners.h), or null where it divides them. indivisible_because: the settings whose steps read
+// links across polygons (Gauss-Seidel sweeps, the closure balance, transmission); undivided_because
+// adds checkpoints, whose file holds every link (their solve is still the divided one's).
+const char* indivisible_because(const HierarchicalSettings& s);
+const char* undivided_because(const HierarchicalSettings& s);
+
 // The default smallest element: the median input polygon's side (by area) / 128, squared.
 double default_min_area(const Hierarchy& h);
 

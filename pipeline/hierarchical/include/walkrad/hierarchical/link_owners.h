@@ -24,8 +24,8 @@ LinkOwners divide_polygons(const ClusterTree& tree, int ranks, int me);
 // a polygon's cost its links + 1): from the rank holding the most to the one holding the least, the
 // heaviest polygon that fits in half the gap, until every rank is within 2% of the mean; the links of
 // the polygons that move sent to their new ranks. The deal depends only on the counts, the same on every
-// rank, and no result depends on the deal. A collective call. Returns the links this rank sent.
-uint64_t rebalance_links(Hierarchy& h);
+// rank, and no result depends on the deal. A collective call.
+void rebalance_links(Hierarchy& h);
 
 // Every rank given every link, and the division ended: what follows the solve (the final gather, the
 // mesh) reads an element's links wherever it is. A collective call, a piece of the nodes at a time.
@@ -37,10 +37,11 @@ inline bool holds_links(const Hierarchy& h, uint32_t i) {
   return n.cluster || h.owners().holds_polygon(n.polygon);
 }
 
-// For every element node i < count, the value its polygon's rank computed (get(i) there) is given to
-// the others (set(i, value) here). A collective call; nothing happens when the links are not divided.
+// For every element node i, the value its polygon's rank computed (get(i) there) is given to the others
+// (set(i, value) here). A collective call; nothing happens when the links are not divided.
 template <class T, class Get, class Set>
-void share_element_values(const Hierarchy& h, size_t count, Get get, Set set) {
+void share_element_values(const Hierarchy& h, Get get, Set set) {
+  const size_t count = h.nodes().size();
   static_assert(std::is_trivially_copyable_v<T>);
   const LinkOwners& o = h.owners();
   if (!o.divided()) return;
@@ -72,6 +73,12 @@ void share_element_values(const Hierarchy& h, size_t count, Get get, Set set) {
     }
     at += sizeof(T);
   }
+}
+
+// The same for a value per node kept in a vector.
+template <class T>
+void share_element_values(const Hierarchy& h, std::vector<T>& by_node) {
+  share_element_values<T>(h, [&](uint32_t i) { return by_node[i]; }, [&](uint32_t i, const T& v) { by_node[i] = v; });
 }
 
 }  // namespace walkrad
