@@ -91,10 +91,11 @@ for name, (folder, args) in scenes.items():
             failures.append(f"{name}, {n} ranks: report says {exchanged} bytes exchanged")
 
 # Links divided among ranks (walkrad/hierarchical/link_owners.h): with Jacobi sweeps each rank keeps
-# only its receivers' links. The bakes at 1, 2 and 3 ranks are one process's with --solver jacobi, byte
-# for byte; each rank holds fewer links than one process, the office level's ranks about as many each,
-# and at 2 ranks its links' peak memory (a count of bytes, not a measurement: the same every run) is at
-# most 0.6 of one process's (issue 28).
+# only its receivers' links, to the end of the bake (the final gather and the vertices read them on
+# their rank). The bakes at 1, 2 and 3 ranks are one process's with --solver jacobi, byte for byte; each
+# rank holds fewer links than one process, the office level's ranks about as many each, and at 2 ranks
+# its links' peak memory over the whole bake (a count of bytes, not a measurement: the same every run;
+# noted in each round and after the mesh) is at most 0.6 of one process's (issue 28).
 for name, (folder, args) in scenes.items():
     args = [*args, "--solver", "jacobi"]
     plain = os.path.join(work, name + "-jacobi-plain")

@@ -12,6 +12,7 @@
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy_audit.h"
+#include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/view_importance.h"
 #include "walkrad/output/hierarchy_mesher.h"
@@ -221,6 +222,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     PointSolution::Counts boundaries;
     drawn.counts = &boundaries;
     SurfaceMesh mesh = mesh_hierarchy(*h, exposure, drawn);
+    // The output stage adds no links and reads each where it is (link_owners.h): noted, so that a rank's
+    // link_mb_peak covers the whole bake.
+    rank_work().link_bytes_peak = std::max(rank_work().link_bytes_peak, link_bytes(*h));
     if (point.discontinuities)
       counts["shadow_boundaries"] = {{"found", boundaries.found}, {"hidden", boundaries.hidden}, {"drawn", boundaries.drawn},
                                      {"faces_cut", boundaries.faces_cut},

@@ -66,16 +66,25 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine) {
   return all;
 }
 
-void all_sum(int64_t* data, size_t count) {
+namespace {
+
+// MPI_Allreduce of a sum in place, in pieces (MPI counts are ints).
+void all_sum_as(void* data, size_t count, size_t size, MPI_Datatype type) {
   if (!g_started || g_ranks.size == 1) return;
   const auto start = std::chrono::steady_clock::now();
-  constexpr size_t kPiece = size_t(1) << 27;  // MPI counts are ints
+  constexpr size_t kPiece = size_t(1) << 27;
   for (size_t at = 0; at < count; at += kPiece)
-    MPI_Allreduce(MPI_IN_PLACE, data + at, int(std::min(kPiece, count - at)), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, static_cast<uint8_t*>(data) + at * size, int(std::min(kPiece, count - at)), type, MPI_SUM,
+                  MPI_COMM_WORLD);
   g_work.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  g_work.bytes_sent += uint64_t(count) * 8;
-  g_bytes += uint64_t(count) * 16;  // its own sent, the sum received
+  g_work.bytes_sent += uint64_t(count * size);
+  g_bytes += uint64_t(count * size) * 2;  // its own sent, the sum received
 }
+
+}  // namespace
+
+void all_sum(int64_t* data, size_t count) { all_sum_as(data, count, sizeof(int64_t), MPI_INT64_T); }
+void all_sum(double* data, size_t count) { all_sum_as(data, count, sizeof(double), MPI_DOUBLE); }
 
 void broadcast(std::vector<uint8_t>& bytes) {
   if (!g_started || g_ranks.size == 1) return;

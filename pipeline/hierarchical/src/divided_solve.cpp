@@ -213,8 +213,7 @@ void Solver::shoot_importance_exactly() {
 }
 
 void Solver::note_link_memory() {
-  uint64_t bytes = pending_.capacity() * sizeof(Pending);
-  for (const HNode& n : h_.nodes()) bytes += n.links.capacity() * sizeof(Link);
+  const uint64_t bytes = pending_.capacity() * sizeof(Pending) + link_bytes(h_);
   stats_.link_bytes_peak = std::max(stats_.link_bytes_peak, bytes);
   rank_work().link_bytes_peak = std::max(rank_work().link_bytes_peak, bytes);
 }

@@ -13,6 +13,7 @@
 #include "walkrad/core/sampling.h"
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/formfactor/punctual_lights.h"
+#include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/transmission.h"
 #include "walkrad/scene/transmission_twins.h"
@@ -229,10 +230,14 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
   uint64_t splits = 0;
   std::atomic<uint64_t> rays{0};
   while (!batch.empty()) {
+    // Each leaf tested on the rank holding its links (the candidates are its ancestors'), and its
+    // excess given to every rank (link_owners.h): the queue and the splits are the same on all.
     std::vector<double> excess(batch.size(), 0.0);
+    auto rank_of = [&](size_t k) { return polygon_rank(h, h[batch[k]].polygon); };
     tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.size(), 16), [&](const tbb::blocked_range<size_t>& range) {
       uint64_t cast = 0;
       for (size_t k = range.begin(); k != range.end(); ++k) {
+        if (!h.owners().holds_polygon(h[batch[k]].polygon)) continue;
         const HNode& n = h[batch[k]];
         if (n.depth >= r.max_depth || n.area * 0.25 < r.min_area) continue;
         const double shown = std::clamp(luminance(n.B), 0.1 * r.white, r.white);
@@ -240,6 +245,7 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
       }
       rays += cast;
     });
+    if (h.owners().divided()) share_owned(excess, rank_of);
     for (size_t k = 0; k < batch.size(); ++k)
       if (excess[k] > 1) {
         queue.push_back({excess[k], batch[k]});
@@ -275,7 +281,9 @@ uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefi
       }
     }
   }
-  rays_cast += rays;
+  int64_t all_rays = int64_t(rays.load());
+  if (h.owners().divided()) all_sum(&all_rays, 1);
+  rays_cast += uint64_t(all_rays);
   return splits;
 }
 

@@ -152,7 +152,6 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   rank_work().links_held = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
     if (here(i)) rank_work().links_held += h_[i].links.size();
-  join_links(h_);
 }
 
 void Solver::save_round(RoundState& state, int round, bool finished) {

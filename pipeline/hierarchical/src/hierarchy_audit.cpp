@@ -1,7 +1,7 @@
 #include "walkrad/hierarchical/hierarchy_audit.h"
 
 #include "walkrad/hierarchical/directional_irradiance.h"
-
+#include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/transmission.h"
 
@@ -22,6 +22,7 @@ Vec3 link_bt(const Hierarchy& h, const Link& l) {
 void audit_node(const Hierarchy& h, uint32_t i, Vec3 down, DirectionalIrradiance cube, double carried,
                 const std::vector<double>& sent, const std::vector<uint32_t>* twins, EnergyAudit& audit) {
   const HNode& n = h[i];
+  if (!n.cluster && !h.owners().holds_polygon(n.polygon)) return;  // its links' rank counts it
   carried += sent[i];
   if (n.cluster)
     for (const Link& l : n.links) cube.add(n, link_direction(n, h[l.source]), l.F, link_bt(h, l));
@@ -53,8 +54,12 @@ EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twi
   // Σ F A_receiver ā_receiver / A_source over links from the node (ā: the receiver's mean receive factor).
   std::vector<double> sent(h.nodes().size(), 0.0);
   const std::vector<double> receive = mean_receive(h);
+  // Links divided among ranks (link_owners.h): each counted on its rank (a cluster's on rank 0), the
+  // ranks' sums added up.
+  const LinkOwners& owners = h.owners();
   for (size_t k = 0; k < h.nodes().size(); ++k) {
     const HNode& p = h.nodes()[k];
+    if (owners.divided() && (p.cluster ? ranks().rank != 0 : !owners.holds_polygon(p.polygon))) continue;
     for (const Link& l : p.links) {
       // What the receiver takes: an element's children's areas by their shares and receive factors
       // (a cluster's by direction, taken as even).
@@ -67,7 +72,19 @@ EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twi
       for_each_part(h, l, [&](uint32_t node, double w) { sent[node] += l.F * taken * w / h[node].area; });  // Link::seen
     }
   }
+  if (owners.divided()) all_sum(sent.data(), sent.size());
   if (!h.nodes().empty()) audit_node(h, h.root(), Vec3{}, DirectionalIrradiance{}, 0.0, sent, twins, audit);
+  if (owners.divided()) {
+    Vec3* terms[] = {&audit.emitted, &audit.absorbed, &audit.escaped, &audit.unconverged};
+    double sum[12];
+    for (int t = 0; t < 4; ++t) {
+      sum[3 * t] = terms[t]->x;
+      sum[3 * t + 1] = terms[t]->y;
+      sum[3 * t + 2] = terms[t]->z;
+    }
+    all_sum(sum, 12);
+    for (int t = 0; t < 4; ++t) *terms[t] = {sum[3 * t], sum[3 * t + 1], sum[3 * t + 2]};
+  }
   return audit;
 }
 

@@ -40,6 +40,12 @@ void pass_links(Hierarchy& h, size_t first, size_t last, Send send, Take take, b
 
 }  // namespace
 
+uint64_t link_bytes(const Hierarchy& h) {
+  uint64_t bytes = 0;
+  for (const HNode& n : h.nodes()) bytes += n.links.capacity() * sizeof(Link);
+  return bytes;
+}
+
 LinkOwners divide_polygons(const ClusterTree& tree, int ranks, int me) {
   LinkOwners o;
   o.me = uint16_t(me);
@@ -101,19 +107,6 @@ void rebalance_links(Hierarchy& h) {
       h, 0, h.nodes().size(), [&](const HNode& n) { return o.rank[n.polygon] == o.me && next[n.polygon] != o.me; },
       [&](const HNode& n) { return next[n.polygon] == o.me; }, true);
   o.rank = std::move(next);
-}
-
-void join_links(Hierarchy& h) {
-  LinkOwners& o = h.owners();
-  if (!o.divided()) return;
-  // A piece of the nodes at a time: each rank's links of it, gathered by all (node, count, links).
-  const size_t n = h.nodes().size();
-  constexpr size_t kPiece = size_t(1) << 15;
-  for (size_t first = 0; first < n; first += kPiece) {
-    pass_links(h, first, std::min(n, first + kPiece), [&](const HNode& node) { return o.holds_polygon(node.polygon); },
-               [&](const HNode& node) { return !o.holds_polygon(node.polygon); }, false);
-  }
-  o.rank.clear();
 }
 
 }  // namespace walkrad

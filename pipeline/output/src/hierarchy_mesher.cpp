@@ -10,6 +10,7 @@
 #include "walkrad/output/discontinuity_mesh.h"
 #include "walkrad/output/surface_mesher.h"
 #include "walkrad/hierarchical/final_gather.h"
+#include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/point_radiosity.h"
 #include "walkrad/scene/contact_split.h"
 #include "walkrad/scene/transmission_twins.h"
@@ -53,9 +54,13 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     candidates.resize(faces.size());
     std::vector<uint8_t> seen_face(faces.size());
     for (size_t f = 0; f < faces.size(); ++f) seen_face[f] = seen(f);
+    // Each on the rank holding the leaf's links (link_owners.h), given to every rank: a vertex's
+    // direct light merges the candidates of its faces, whatever their polygons.
     tbb::parallel_for(size_t(0), faces.size(), [&](size_t f) {
-      if (seen_face[f]) candidates[f] = direct->candidates(leaf[f]);
+      if (seen_face[f] && h.owners().holds_polygon(faces[f].polygon)) candidates[f] = direct->candidates(leaf[f]);
     });
+    if (h.owners().divided())
+      share_owned_lists(candidates, [&](size_t f) { return seen_face[f] ? polygon_rank(h, faces[f].polygon) : -1; });
     // The seen leaves' close sources taken part by part (ClusterGather::resolve_close_sources).
     std::vector<uint32_t> seen_leaves;
     for (size_t f = 0; f < faces.size(); ++f)
@@ -127,6 +132,9 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
       return direct->at(x, normal, inward, from, rays);
     };
   }
+  // A face's points are read from its leaf's links: on their rank, when the links are divided.
+  FaceRanks face_rank;
+  if (h.owners().divided()) face_rank = [&](size_t face) { return polygon_rank(h, faces[face].polygon); };
   return mesh_faces(faces, exposure, [&](size_t face, const Vec3& x, bool gathered) {
     Cached& c = cache.local();
     const uint32_t i = leaf[face];
@@ -135,7 +143,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
       c.leaf = i;
     }
     return c.radiosity->at(x, gathered);
-  }, gather);
+  }, gather, face_rank);
 }
 
 }  // namespace walkrad

@@ -84,7 +84,8 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
 
 }  // namespace
 
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather) {
+SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather,
+                       const FaceRanks& face_rank) {
   SurfaceMesh surface;
   if (faces.empty()) return surface;
   Bounds bounds;
@@ -239,33 +240,56 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     for (size_t s = 0; s < slots; ++s) toward[s] = toward[s] / double(std::max(around[s], 1u));
   }
   if (at) {
-    // Under mpirun each rank evaluates one block of the faces (by their corners) and shares it (ranks.h).
-    const std::vector<size_t> blocks = run_my_block(
-        faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); },
-        [&](size_t first, size_t last) {
-          tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) {
-              const Vec3& c = centre[i];
-              const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
-              if (fanned) {
-                const bool seen = gathering && face_seen[i];
-                const uint32_t self = uint32_t(i);
-                centre_value[i] = at(i, c, seen);
-                if (seen) centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
-              }
-              for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-                const uint32_t s = face_slots[j];
-                const Vec3& p = points[boundary[j]];
-                if (!gathered[s]) value[j] = at(i, p + (c - p) * kInward, false);
-                else if (reader[s] == j) value[j] = at(i, p + (toward[s] - p) * kInward, true);
-              }
-            }
+    auto evaluate = [&](size_t i) {
+      const Vec3& c = centre[i];
+      const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
+      if (fanned) {
+        const bool seen = gathering && face_seen[i];
+        const uint32_t self = uint32_t(i);
+        centre_value[i] = at(i, c, seen);
+        if (seen) centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
+      }
+      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
+        const uint32_t s = face_slots[j];
+        const Vec3& p = points[boundary[j]];
+        if (!gathered[s]) value[j] = at(i, p + (c - p) * kInward, false);
+        else if (reader[s] == j) value[j] = at(i, p + (toward[s] - p) * kInward, true);
+      }
+    };
+    if (face_rank && ranks().size > 1) {
+      // Each rank reads its own faces (face_rank) and shares what it read: a face's values, and its
+      // corners' (those no face reads stay zero everywhere).
+      std::vector<size_t> mine;
+      for (size_t i = 0; i < faces.size(); ++i)
+        if (face_rank(i) == ranks().rank) mine.push_back(i);
+      const auto start = std::chrono::steady_clock::now();
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, mine.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) evaluate(mine[k]);
+      });
+      rank_work().items += mine.size();
+      rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      share_owned(centre_value, [&](size_t i) {
+        return boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count) ? face_rank(i) : -1;
+      });
+      std::vector<int> corner_rank(boundary.size(), -1);
+      for (size_t i = 0; i < faces.size(); ++i)
+        for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
+          if (!gathered[face_slots[j]] || reader[face_slots[j]] == j) corner_rank[j] = face_rank(i);
+      share_owned(value, [&](size_t j) { return corner_rank[j]; });
+    } else {
+      // Under mpirun each rank evaluates one block of the faces (by their corners) and shares it (ranks.h).
+      const std::vector<size_t> blocks = run_my_block(
+          faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); },
+          [&](size_t first, size_t last) {
+            tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
+              for (size_t i = r.begin(); i != r.end(); ++i) evaluate(i);
+            });
           });
-        });
-    share_blocks(centre_value, blocks);
-    std::vector<size_t> corner_blocks;
-    for (size_t b : blocks) corner_blocks.push_back(boundary_begin[b]);
-    share_blocks(value, corner_blocks);
+      share_blocks(centre_value, blocks);
+      std::vector<size_t> corner_blocks;
+      for (size_t b : blocks) corner_blocks.push_back(boundary_begin[b]);
+      share_blocks(value, corner_blocks);
+    }
   }
   std::vector<Vec3> sum(slots), rho(slots);
   std::vector<double> weight(slots, 0.0);

@@ -5,13 +5,15 @@
 // and of the output vertices' radiosity (surface_mesher.cpp), by contiguous blocks of about equal cost
 // in their own order, each rank's results gathered by every rank (MPI_Allgatherv). Each result depends
 // only on its own inputs (a link's random numbers are seeded by its two nodes, a vertex's by its
-// position), so the bake does not depend on the number of ranks. With Jacobi sweeps the solve's links
-// are divided as well (walkrad/hierarchical/link_owners.h). Everything else (the scene, the nodes) is
-// replicated; rank 0 alone writes the bake (docs/scaling.md).
+// position), so the bake does not depend on the number of ranks. With Jacobi sweeps the links are
+// divided as well, to the end of the bake (walkrad/hierarchical/link_owners.h): what reads them runs on
+// the rank holding them and shares what it found (share_owned). Everything else (the scene, the nodes)
+// is replicated; rank 0 alone writes the bake (docs/scaling.md).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -40,6 +42,9 @@ std::vector<uint8_t> all_gather(const std::vector<uint8_t>& mine);
 // Every rank's integers summed, element by element, into every rank's (MPI_Allreduce): integer sums
 // do not depend on the order the ranks are added in. With one rank nothing happens.
 void all_sum(int64_t* data, size_t count);
+// The same for doubles, for what only reports a total (the energy audit): a sum of several ranks'
+// parts rounds differently from one process's sum.
+void all_sum(double* data, size_t count);
 
 // Rank 0's bytes to every rank (MPI_Bcast): rank 0 reads a file that the other hosts need not have.
 // With one rank, nothing happens.
@@ -98,6 +103,83 @@ void share_blocks(std::vector<T>& v, const std::vector<size_t>& blocks) {
   static_assert(std::is_trivially_copyable_v<T>);
   if (blocks.back() != v.size()) throw std::runtime_error("share_blocks: the blocks do not cover the list");
   all_gather_blocks(v.data(), sizeof(T), blocks);
+}
+
+// Items [0, n) each computed on one rank, owner(i) (an int; negative: an item no rank sends), given
+// to every other rank: each rank packs get(i) of its own items in index order, every rank receives
+// every pack (all_gather) and calls set(i, value) for the others' items. Every rank must know every
+// item's owner. A collective call; with one rank nothing happens.
+template <class T, class Owner, class Get, class Set>
+void share_owned(size_t n, Owner owner, Get get, Set set) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const Ranks& r = ranks();
+  if (r.size == 1) return;
+  std::vector<uint8_t> mine;
+  std::vector<size_t> offset(size_t(r.size) + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const int o = owner(i);
+    if (o < 0) continue;
+    offset[size_t(o) + 1] += sizeof(T);
+    if (o != r.rank) continue;
+    const T v = get(i);
+    const size_t at = mine.size();
+    mine.resize(at + sizeof(T));
+    std::memcpy(mine.data() + at, &v, sizeof(T));
+  }
+  const std::vector<uint8_t> all = all_gather(mine);
+  std::vector<uint8_t>().swap(mine);
+  for (size_t k = 1; k < offset.size(); ++k) offset[k] += offset[k - 1];
+  for (size_t i = 0; i < n; ++i) {
+    const int o = owner(i);
+    if (o < 0) continue;
+    size_t& at = offset[size_t(o)];
+    if (o != r.rank) {
+      T v;
+      std::memcpy(&v, all.data() + at, sizeof(T));
+      set(i, v);
+    }
+    at += sizeof(T);
+  }
+}
+
+// The same for a value per item kept in a vector.
+template <class T, class Owner>
+void share_owned(std::vector<T>& v, Owner owner) {
+  share_owned<T>(v.size(), owner, [&](size_t i) { return v[i]; }, [&](size_t i, const T& x) { v[i] = x; });
+}
+
+// The same for a list per item (each rank sends its items' counts, then their elements; T's bytes
+// are copied, so T holds no pointers).
+template <class T, class Owner>
+void share_owned_lists(std::vector<std::vector<T>>& lists, Owner owner) {
+  static_assert(std::is_trivially_copy_constructible_v<T> && std::is_trivially_destructible_v<T>);
+  const Ranks& r = ranks();
+  if (r.size == 1) return;
+  share_owned<uint32_t>(lists.size(), owner, [&](size_t i) { return uint32_t(lists[i].size()); },
+                        [&](size_t i, uint32_t count) { lists[i].resize(count); });
+  std::vector<uint8_t> mine;
+  std::vector<size_t> offset(size_t(r.size) + 1, 0);
+  for (size_t i = 0; i < lists.size(); ++i) {
+    const int o = owner(i);
+    if (o < 0) continue;
+    const size_t bytes = lists[i].size() * sizeof(T);
+    offset[size_t(o) + 1] += bytes;
+    if (o != r.rank || bytes == 0) continue;
+    const size_t at = mine.size();
+    mine.resize(at + bytes);
+    std::memcpy(mine.data() + at, static_cast<const void*>(lists[i].data()), bytes);
+  }
+  const std::vector<uint8_t> all = all_gather(mine);
+  std::vector<uint8_t>().swap(mine);
+  for (size_t k = 1; k < offset.size(); ++k) offset[k] += offset[k - 1];
+  for (size_t i = 0; i < lists.size(); ++i) {
+    const int o = owner(i);
+    if (o < 0) continue;
+    size_t& at = offset[size_t(o)];
+    const size_t bytes = lists[i].size() * sizeof(T);
+    if (o != r.rank && bytes) std::memcpy(static_cast<void*>(lists[i].data()), all.data() + at, bytes);
+    at += bytes;
+  }
 }
 
 }  // namespace walkrad

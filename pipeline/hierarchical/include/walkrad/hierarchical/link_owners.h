@@ -4,11 +4,11 @@
 // importance, the scene) is on every rank. A step that reads links runs on the rank that holds them
 // and sends what it found per element node to the others (share_element_values); the sums every rank
 // then makes run over nodes in the same order, so the result does not depend on the number of ranks.
+// The division lasts to the end of the bake: the final gather's refinement, the vertices' radiosity
+// and the energy audit read each element's links on its rank too (polygon_rank).
 #pragma once
 
 #include <cstdint>
-#include <cstring>
-#include <type_traits>
 #include <vector>
 
 #include "walkrad/core/ranks.h"
@@ -27,9 +27,9 @@ LinkOwners divide_polygons(const ClusterTree& tree, int ranks, int me);
 // rank, and no result depends on the deal. A collective call.
 void rebalance_links(Hierarchy& h);
 
-// Every rank given every link, and the division ended: what follows the solve (the final gather, the
-// mesh) reads an element's links wherever it is. A collective call, a piece of the nodes at a time.
-void join_links(Hierarchy& h);
+// The bytes this rank's links take (their lists' capacities): report.json's link_mb_peak, noted during
+// the solve and again after the output stage, which reads the links where they are and adds none.
+uint64_t link_bytes(const Hierarchy& h);
 
 // Whether this rank holds node i's links (a cluster's: every rank).
 inline bool holds_links(const Hierarchy& h, uint32_t i) {
@@ -37,42 +37,22 @@ inline bool holds_links(const Hierarchy& h, uint32_t i) {
   return n.cluster || h.owners().holds_polygon(n.polygon);
 }
 
+// The rank that holds the links of the elements of input polygon p (0 when they are not divided):
+// what reads those links (the final gather's candidates, the vertices' LeafRadiosity) runs there.
+inline int polygon_rank(const Hierarchy& h, uint32_t polygon) {
+  const LinkOwners& o = h.owners();
+  return o.divided() ? int(o.rank[polygon]) : 0;
+}
+
 // For every element node i, the value its polygon's rank computed (get(i) there) is given to the others
 // (set(i, value) here). A collective call; nothing happens when the links are not divided.
 template <class T, class Get, class Set>
 void share_element_values(const Hierarchy& h, Get get, Set set) {
-  const size_t count = h.nodes().size();
-  static_assert(std::is_trivially_copyable_v<T>);
   const LinkOwners& o = h.owners();
   if (!o.divided()) return;
-  std::vector<uint8_t> mine;
-  std::vector<size_t> per_rank(size_t(ranks().size), 0);
-  for (uint32_t i = 0; i < count; ++i) {
-    const HNode& n = h[i];
-    if (n.cluster) continue;
-    const uint16_t r = o.rank[n.polygon];
-    ++per_rank[r];
-    if (r != o.me) continue;
-    const T v = get(i);
-    const size_t at = mine.size();
-    mine.resize(at + sizeof(T));
-    std::memcpy(mine.data() + at, &v, sizeof(T));
-  }
-  const std::vector<uint8_t> all = all_gather(mine);
-  std::vector<size_t> offset(per_rank.size(), 0);
-  for (size_t r = 1; r < offset.size(); ++r) offset[r] = offset[r - 1] + per_rank[r - 1] * sizeof(T);
-  for (uint32_t i = 0; i < count; ++i) {
-    const HNode& n = h[i];
-    if (n.cluster) continue;
-    const uint16_t r = o.rank[n.polygon];
-    size_t& at = offset[r];
-    if (r != o.me) {
-      T v;
-      std::memcpy(&v, all.data() + at, sizeof(T));
-      set(i, v);
-    }
-    at += sizeof(T);
-  }
+  share_owned<T>(
+      h.nodes().size(), [&](size_t i) { const HNode& n = h[uint32_t(i)]; return n.cluster ? -1 : int(o.rank[n.polygon]); },
+      [&](size_t i) { return get(uint32_t(i)); }, [&](size_t i, const T& v) { set(uint32_t(i), v); });
 }
 
 // The same for a value per node kept in a vector.

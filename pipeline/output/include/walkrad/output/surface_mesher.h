@@ -57,7 +57,11 @@ struct VertexGather {
 // area-weighted mean of at(face, point) over its faces instead of their mean radiosity; gather (with
 // at): the final gather at the vertices it sees. Deterministic: the output depends only on the faces
 // and their order.
+// Under mpirun, the rank on which at(face, …) can be read (the one holding the links of its leaf:
+// walkrad/hierarchical/link_owners.h); without it the faces are cut into blocks of equal cost.
+using FaceRanks = std::function<int(size_t face)>;
+
 SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at = {},
-                       const VertexGather& gather = {});
+                       const VertexGather& gather = {}, const FaceRanks& face_rank = {});
 
 }  // namespace walkrad
