@@ -1,40 +1,44 @@
 #include "walkrad/hierarchical/link_owners.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace walkrad {
 
 namespace {
 
-// Element nodes' links from the ranks that send them (send(node)) to those that take them (take(node)):
-// each rank packs (node, count, links) for the nodes in [first, last) it sends, freeing them where
-// drop, every rank receives every pack (all_gather) and keeps what it takes.
+// The links of the element nodes whose polygons move (send(node): from this rank; take(node): to it),
+// a piece of the nodes at a time (all_gather takes at most 2 GB): each rank packs (node, count, links)
+// for its nodes of the piece that move, freeing them, and every rank receives every pack and keeps
+// what it takes.
 template <class Send, class Take>
-void pass_links(Hierarchy& h, size_t first, size_t last, Send send, Take take, bool drop) {
-  std::vector<uint8_t> mine;
-  for (size_t i = first; i < last; ++i) {
-    HNode& n = h[uint32_t(i)];
-    if (n.cluster || n.links.empty() || !send(n)) continue;
-    const uint32_t head[2] = {uint32_t(i), uint32_t(n.links.size())};
-    const size_t at = mine.size(), bytes = n.links.size() * sizeof(Link);
-    mine.resize(at + sizeof(head) + bytes);
-    std::memcpy(mine.data() + at, head, sizeof(head));
-    std::memcpy(mine.data() + at + sizeof(head), n.links.data(), bytes);
-    if (drop) std::vector<Link>().swap(n.links);
-  }
-  const std::vector<uint8_t> all = all_gather(mine);
-  std::vector<uint8_t>().swap(mine);
-  for (size_t at = 0; at < all.size();) {
-    uint32_t head[2];
-    std::memcpy(head, all.data() + at, sizeof(head));
-    at += sizeof(head);
-    HNode& n = h[head[0]];
-    const size_t bytes = size_t(head[1]) * sizeof(Link);
-    if (take(n)) {
-      n.links.resize(head[1]);
-      std::memcpy(n.links.data(), all.data() + at, bytes);
+void move_links(Hierarchy& h, Send send, Take take) {
+  constexpr size_t kPiece = size_t(1) << 15;
+  for (size_t first = 0; first < h.nodes().size(); first += kPiece) {
+    std::vector<uint8_t> mine;
+    for (size_t i = first; i < std::min(h.nodes().size(), first + kPiece); ++i) {
+      HNode& n = h[uint32_t(i)];
+      if (n.cluster || n.links.empty() || !send(n)) continue;
+      const uint32_t head[2] = {uint32_t(i), uint32_t(n.links.size())};
+      const size_t at = mine.size(), bytes = n.links.size() * sizeof(Link);
+      mine.resize(at + sizeof(head) + bytes);
+      std::memcpy(mine.data() + at, head, sizeof(head));
+      std::memcpy(mine.data() + at + sizeof(head), n.links.data(), bytes);
+      std::vector<Link>().swap(n.links);
     }
-    at += bytes;
+    const std::vector<uint8_t> all = all_gather(mine);
+    for (size_t at = 0; at < all.size();) {
+      uint32_t head[2];
+      std::memcpy(head, all.data() + at, sizeof(head));
+      at += sizeof(head);
+      HNode& n = h[head[0]];
+      const size_t bytes = size_t(head[1]) * sizeof(Link);
+      if (take(n)) {
+        n.links.resize(head[1]);
+        std::memcpy(n.links.data(), all.data() + at, bytes);
+      }
+      at += bytes;
+    }
   }
 }
 
@@ -103,9 +107,8 @@ void rebalance_links(Hierarchy& h) {
                        {weight, position});
   }
   // The links that move, sent to their new ranks.
-  pass_links(
-      h, 0, h.nodes().size(), [&](const HNode& n) { return o.rank[n.polygon] == o.me && next[n.polygon] != o.me; },
-      [&](const HNode& n) { return next[n.polygon] == o.me; }, true);
+  move_links(h, [&](const HNode& n) { return o.rank[n.polygon] == o.me && next[n.polygon] != o.me; },
+             [&](const HNode& n) { return next[n.polygon] == o.me; });
   o.rank = std::move(next);
 }
 
