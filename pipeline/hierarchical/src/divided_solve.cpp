@@ -184,8 +184,7 @@ void Solver::shoot_importance_exactly() {
   std::vector<HNode>& nodes = h_.nodes();
   // Each link's importance ρ_i F_ij I_i to its source, in units of 2^-k of a bound on the total (the
   // sum of their sizes, node by node in order: the same bound on every rank), as integers.
-  // Cluster receivers' links are on every rank: rank 0 adds them.
-  auto adds = [&](const HNode& n) { return !n.cluster || !divided_ || ranks().rank == 0; };
+  // Cluster receivers' links are on every rank: rank 0 adds them (counts_links).
   std::vector<double> size(nodes.size(), 0.0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
@@ -204,9 +203,9 @@ void Solver::shoot_importance_exactly() {
   // |Σ| < 2^60 + a half-unit a link: far inside 64 bits.
   const double unit = std::ldexp(1.0, 60 - (std::ilogb(bound) + 1));
   std::vector<int64_t> sum(nodes.size(), 0);
-  for (const HNode& n : nodes)  // sequential: no two threads add to one source
-    if (adds(n))
-      for (const Link& l : n.links) sum[l.source] += std::llround(luminance(n.rho) * l.F * n.I * unit);
+  for (uint32_t i = 0; i < nodes.size(); ++i)  // sequential: no two threads add to one source
+    if (counts_links(h_, i))
+      for (const Link& l : nodes[i].links) sum[l.source] += std::llround(luminance(nodes[i].rho) * l.F * nodes[i].I * unit);
   if (divided_) all_sum(sum.data(), sum.size());
   const double back = 1.0 / unit;  // a power of 2: exact
   for (size_t k = 0; k < nodes.size(); ++k) nodes[k].Ig = double(sum[k]) * back;

@@ -54,12 +54,11 @@ EnergyAudit audit_hierarchy(const Hierarchy& h, const std::vector<uint32_t>* twi
   // Σ F A_receiver ā_receiver / A_source over links from the node (ā: the receiver's mean receive factor).
   std::vector<double> sent(h.nodes().size(), 0.0);
   const std::vector<double> receive = mean_receive(h);
-  // Links divided among ranks (link_owners.h): each counted on its rank (a cluster's on rank 0), the
-  // ranks' sums added up.
+  // Links divided among ranks (link_owners.h): each counted on one rank, the ranks' sums added up.
   const LinkOwners& owners = h.owners();
   for (size_t k = 0; k < h.nodes().size(); ++k) {
     const HNode& p = h.nodes()[k];
-    if (owners.divided() && (p.cluster ? ranks().rank != 0 : !owners.holds_polygon(p.polygon))) continue;
+    if (!counts_links(h, uint32_t(k))) continue;
     for (const Link& l : p.links) {
       // What the receiver takes: an element's children's areas by their shares and receive factors
       // (a cluster's by direction, taken as even).

@@ -129,7 +129,7 @@ void Solver::refine_first() {
   std::atomic<bool> blocked{false};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end() && !blocked; ++k) {
-      Refinement out{nullptr, &found[k], splits[k]};
+      Refinement out{&found[k], splits[k]};
       refine(out, pairs[k].first, pairs[k].second, nullptr);
       if (out.blocked) blocked = true;
     }
@@ -225,9 +225,8 @@ void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<u
     out.found->push_back({i, j, samples, need_rays, volume});
     return;
   }
-  std::vector<Pending>& pending = *out.pending;
-  if (s_.check_limits && pending.size() == pending.capacity() && pending.size() >= 65536)
-    s_.check_limits("refinement", 2 * pending.capacity() * sizeof(Pending));
+  if (s_.check_limits && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
+    s_.check_limits("refinement", 2 * pending_.capacity() * sizeof(Pending));
   add_pending({i, j, need_rays, samples, volume});
 }
 

@@ -207,15 +207,14 @@ class Solver {
     bool need_rays, volume;
   };
   // Where refine() puts what it finds: the links to evaluate, straight into the round's list
-  // (pending), or into a pair's own (found: other pairs are refined at the same time, so no node may
+  // (add_pending), or into a pair's own (found: other pairs are refined at the same time, so no node may
   // be made, and a split that would make one sets blocked and stops); and the count of splits.
   struct Refinement {
-    std::vector<Pending>* pending;
     std::vector<NewLink>* found;
     uint64_t& refinements;
     bool blocked = false;
   };
-  Refinement serial_refinement() { return {&pending_, nullptr, stats_.refinements}; }
+  Refinement serial_refinement() { return {nullptr, stats_.refinements}; }
 
   // The first refinement, refine(root, root) with its independent pairs in parallel (refine_first).
   void refine_first();

@@ -240,10 +240,11 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     for (size_t s = 0; s < slots; ++s) toward[s] = toward[s] / double(std::max(around[s], 1u));
   }
   if (at) {
+    // T-vertices on its edges: the face is fanned from its centre (5.), which takes a value too.
+    auto fanned = [&](size_t i) { return boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count); };
     auto evaluate = [&](size_t i) {
       const Vec3& c = centre[i];
-      const bool fanned = boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count);  // as in 5.
-      if (fanned) {
+      if (fanned(i)) {
         const bool seen = gathering && face_seen[i];
         const uint32_t self = uint32_t(i);
         centre_value[i] = at(i, c, seen);
@@ -268,9 +269,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
       });
       rank_work().items += mine.size();
       rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      share_owned(centre_value, [&](size_t i) {
-        return boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count) ? face_rank(i) : -1;
-      });
+      share_owned(centre_value, [&](size_t i) { return fanned(i) ? face_rank(i) : -1; });
       std::vector<int> corner_rank(boundary.size(), -1);
       for (size_t i = 0; i < faces.size(); ++i)
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)

@@ -105,26 +105,23 @@ void share_blocks(std::vector<T>& v, const std::vector<size_t>& blocks) {
   all_gather_blocks(v.data(), sizeof(T), blocks);
 }
 
-// Items [0, n) each computed on one rank, owner(i) (an int; negative: an item no rank sends), given
-// to every other rank: each rank packs get(i) of its own items in index order, every rank receives
-// every pack (all_gather) and calls set(i, value) for the others' items. Every rank must know every
-// item's owner. A collective call; with one rank nothing happens.
-template <class T, class Owner, class Get, class Set>
-void share_owned(size_t n, Owner owner, Get get, Set set) {
-  static_assert(std::is_trivially_copyable_v<T>);
+namespace ranks_detail {
+
+// share_owned's exchange, by bytes: item i's size(i) bytes, written by put(i, to) on its owner and read
+// by take(i, from) on the others (every rank knows every item's owner and size).
+template <class Owner, class Size, class Put, class Take>
+void share_owned_bytes(size_t n, Owner owner, Size size, Put put, Take take) {
   const Ranks& r = ranks();
-  if (r.size == 1) return;
   std::vector<uint8_t> mine;
   std::vector<size_t> offset(size_t(r.size) + 1, 0);
   for (size_t i = 0; i < n; ++i) {
     const int o = owner(i);
     if (o < 0) continue;
-    offset[size_t(o) + 1] += sizeof(T);
-    if (o != r.rank) continue;
-    const T v = get(i);
-    const size_t at = mine.size();
-    mine.resize(at + sizeof(T));
-    std::memcpy(mine.data() + at, &v, sizeof(T));
+    const size_t bytes = size(i);
+    offset[size_t(o) + 1] += bytes;
+    if (o != r.rank || bytes == 0) continue;
+    mine.resize(mine.size() + bytes);
+    put(i, mine.data() + mine.size() - bytes);
   }
   const std::vector<uint8_t> all = all_gather(mine);
   std::vector<uint8_t>().swap(mine);
@@ -133,13 +130,33 @@ void share_owned(size_t n, Owner owner, Get get, Set set) {
     const int o = owner(i);
     if (o < 0) continue;
     size_t& at = offset[size_t(o)];
-    if (o != r.rank) {
-      T v;
-      std::memcpy(&v, all.data() + at, sizeof(T));
-      set(i, v);
-    }
-    at += sizeof(T);
+    const size_t bytes = size(i);
+    if (o != r.rank && bytes) take(i, all.data() + at);
+    at += bytes;
   }
+}
+
+}  // namespace ranks_detail
+
+// Items [0, n) each computed on one rank, owner(i) (an int; negative: an item no rank sends), given
+// to every other rank: each rank packs get(i) of its own items in index order, every rank receives
+// every pack (all_gather) and calls set(i, value) for the others' items. Every rank must know every
+// item's owner. A collective call; with one rank nothing happens.
+template <class T, class Owner, class Get, class Set>
+void share_owned(size_t n, Owner owner, Get get, Set set) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  if (ranks().size == 1) return;
+  ranks_detail::share_owned_bytes(
+      n, owner, [](size_t) { return sizeof(T); },
+      [&](size_t i, uint8_t* to) {
+        const T v = get(i);
+        std::memcpy(to, &v, sizeof(T));
+      },
+      [&](size_t i, const uint8_t* from) {
+        T v;
+        std::memcpy(&v, from, sizeof(T));
+        set(i, v);
+      });
 }
 
 // The same for a value per item kept in a vector.
@@ -153,33 +170,13 @@ void share_owned(std::vector<T>& v, Owner owner) {
 template <class T, class Owner>
 void share_owned_lists(std::vector<std::vector<T>>& lists, Owner owner) {
   static_assert(std::is_trivially_copy_constructible_v<T> && std::is_trivially_destructible_v<T>);
-  const Ranks& r = ranks();
-  if (r.size == 1) return;
+  if (ranks().size == 1) return;
   share_owned<uint32_t>(lists.size(), owner, [&](size_t i) { return uint32_t(lists[i].size()); },
                         [&](size_t i, uint32_t count) { lists[i].resize(count); });
-  std::vector<uint8_t> mine;
-  std::vector<size_t> offset(size_t(r.size) + 1, 0);
-  for (size_t i = 0; i < lists.size(); ++i) {
-    const int o = owner(i);
-    if (o < 0) continue;
-    const size_t bytes = lists[i].size() * sizeof(T);
-    offset[size_t(o) + 1] += bytes;
-    if (o != r.rank || bytes == 0) continue;
-    const size_t at = mine.size();
-    mine.resize(at + bytes);
-    std::memcpy(mine.data() + at, static_cast<const void*>(lists[i].data()), bytes);
-  }
-  const std::vector<uint8_t> all = all_gather(mine);
-  std::vector<uint8_t>().swap(mine);
-  for (size_t k = 1; k < offset.size(); ++k) offset[k] += offset[k - 1];
-  for (size_t i = 0; i < lists.size(); ++i) {
-    const int o = owner(i);
-    if (o < 0) continue;
-    size_t& at = offset[size_t(o)];
-    const size_t bytes = lists[i].size() * sizeof(T);
-    if (o != r.rank && bytes) std::memcpy(static_cast<void*>(lists[i].data()), all.data() + at, bytes);
-    at += bytes;
-  }
+  ranks_detail::share_owned_bytes(
+      lists.size(), owner, [&](size_t i) { return lists[i].size() * sizeof(T); },
+      [&](size_t i, uint8_t* to) { std::memcpy(to, static_cast<const void*>(lists[i].data()), lists[i].size() * sizeof(T)); },
+      [&](size_t i, const uint8_t* from) { std::memcpy(static_cast<void*>(lists[i].data()), from, lists[i].size() * sizeof(T)); });
 }
 
 }  // namespace walkrad

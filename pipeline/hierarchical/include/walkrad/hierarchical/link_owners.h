@@ -44,6 +44,13 @@ inline int polygon_rank(const Hierarchy& h, uint32_t polygon) {
   return o.divided() ? int(o.rank[polygon]) : 0;
 }
 
+// Whether this rank adds node i's links to a total over the ranks, so that each link counts once: its
+// own receivers' links, and the clusters' (on every rank) on rank 0 alone.
+inline bool counts_links(const Hierarchy& h, uint32_t i) {
+  const LinkOwners& o = h.owners();
+  return h[i].cluster ? !o.divided() || o.me == 0 : o.holds_polygon(h[i].polygon);
+}
+
 // For every element node i, the value its polygon's rank computed (get(i) there) is given to the others
 // (set(i, value) here). A collective call; nothing happens when the links are not divided.
 template <class T, class Get, class Set>
@@ -51,7 +58,7 @@ void share_element_values(const Hierarchy& h, Get get, Set set) {
   const LinkOwners& o = h.owners();
   if (!o.divided()) return;
   share_owned<T>(
-      h.nodes().size(), [&](size_t i) { const HNode& n = h[uint32_t(i)]; return n.cluster ? -1 : int(o.rank[n.polygon]); },
+      h.nodes().size(), [&](size_t i) { const HNode& n = h[uint32_t(i)]; return n.cluster ? -1 : polygon_rank(h, n.polygon); },
       [&](size_t i) { return get(uint32_t(i)); }, [&](size_t i, const T& v) { set(uint32_t(i), v); });
 }
 
