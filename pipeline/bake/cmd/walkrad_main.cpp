@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
                        "(docs/accuracy.md: the error it delivers)")
       ->check(CLI::Range(1e-3, 1.0))->capture_default_str();
   std::string quality;
-  bake_cmd->add_option("--quality", quality, "hierarchical: draft, medium, high (the default) or final: a preset --error")
+  bake_cmd->add_option("--quality", quality, "hierarchical: draft, medium (the default), high or final: a preset --error")
       ->check(CLI::IsMember({"draft", "medium", "high", "final"}))->excludes(error_opt);
   bake_cmd->add_option("--solver", bs.solver,
                        "gauss-seidel (both methods), jacobi (hierarchical; under mpirun it divides the links among the "

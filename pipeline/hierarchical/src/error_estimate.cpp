@@ -200,7 +200,7 @@ double Solver::emitted_inner(uint32_t i) const {
   }
   for (const Link& l : n.links) {
     const HNode& s = h_[l.source];
-    if (s.cluster || max_component(s.emission) <= 0 || l.open <= 0) continue;
+    if (!luminaire(s) || l.open <= 0) continue;
     const double sent = luminance(link_sent(l)) * std::min(1.0, l.F / double(l.open));
     for (int c = 0; c < 4; ++c)
       for (int q = 0; q < 4; ++q)

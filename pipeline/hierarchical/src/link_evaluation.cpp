@@ -202,8 +202,8 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   double area[4], unoccluded[4];
   double seen[4] = {0, 0, 0, 0};  // the visible kernel by the source's quadrant (Link::seen)
   double inner = 0;               // Link::inner, as a share of a child's kernel
-  // Only the emitters' links are read for it (measure_variation); even orders split into quarters.
-  const bool quarters = max_component(sj.emission) > 0 && order >= 2 && order % 2 == 0;
+  // Only the luminaires' links are read for it (measure_variation); even orders split into quarters.
+  const bool quarters = luminaire(sj) && order >= 2 && order % 2 == 0;
   const ContourSource contour(sj.shape);
   for (int c = 0; c < 4; ++c) {
     area[c] = polygon_area(kids[c]);

@@ -65,7 +65,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     std::vector<uint32_t> seen_leaves;
     for (size_t f = 0; f < faces.size(); ++f)
       if (seen_face[f]) seen_leaves.push_back(leaf[f]);
-    clusters.resolve_close_sources(seen_leaves);
+    clusters.resolve_close_sources(seen_leaves, point.twins);
     // Discontinuity meshing (discontinuity_mesh.h): the seen faces cut along the shadow boundaries of
     // their emitters, within as many expected crossings as an eighth of the faces (at least 1,024).
     if (point.discontinuities && direct->emitter_count()) {

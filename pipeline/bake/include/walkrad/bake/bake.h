@@ -28,7 +28,7 @@ struct BakeSettings {
                                         // or "southwell" (classic: progressive refinement, southwell.h)
   // hierarchical: the relative error each surface may show (where the walkthrough looks, with
   // importance), e.g. 0.02 for 2%; quality_error() maps the named presets to it.
-  double error = 0.1;
+  double error = 0.2;
   double min_area = 0;      // hierarchical: smallest element, m² (0: the median polygon's side / 128, squared)
   double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30
   int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
@@ -69,7 +69,7 @@ struct BakeSummary {
   double seconds = 0;
 };
 
-// The requested relative error of a named quality: draft, medium, high (the default), final.
+// The requested relative error of a named quality: draft, medium (the default), high, final.
 // Throws InputError (exit 2) for another name.
 double quality_error(const std::string& quality);
 

@@ -42,7 +42,7 @@ struct RaySample {
 };
 
 struct HierarchicalSettings {
-  double error = 0.1;         // tolerance, relative to what each surface shows (error_estimate.cpp)
+  double error = 0.2;         // tolerance, relative to what each surface shows (error_estimate.cpp)
   bool use_importance = true; // weigh tolerances by importance when the hierarchy has view hits
   double min_area = 0;        // m²; elements are not split below it (0: default_min_area)
   int max_depth = 16;         // quadtree levels below an input polygon
