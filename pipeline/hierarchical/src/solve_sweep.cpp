@@ -16,11 +16,15 @@ namespace walkrad::hierarchical_detail {
 
 double Solver::solve_sweep(IterationStats& is, bool with_importance) {
   std::vector<HNode>& nodes = h_.nodes();
-  if (s_.indirect)  // what each cluster sends by direction, from the last sweep's radiosity
-    facing_bt_ = facing_radiosity(h_, [&](uint32_t k) { return nodes[k].Bt; });
+  // What each cluster sends by direction, from the last sweep's radiosity; Gauss-Seidel sweeps then
+  // update a cluster's as its surfaces are updated (push_pull), and gather at a cluster as they reach
+  // it. Read from the last sweep, a lamp's top 1 cm under a ceiling and the ceiling above it, linked
+  // through clusters, swapped their excess every sweep (a Jacobi step, eigenvalues ±ρF): office-floor's
+  // last round took 23 sweeps at 8 rooms, 15 now (docs/performance.md).
+  if (s_.indirect) facing_bt_ = facing_radiosity(h_, [&](uint32_t k) { return nodes[k].Bt; });
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i)
-      if ((!s_.gauss_seidel || nodes[i].cluster) && here(uint32_t(i))) gather(nodes[i]);
+      if (!s_.gauss_seidel && here(uint32_t(i))) gather(nodes[i]);
   });
   if (divided_) share_gathered();
   change_ = 0;
@@ -84,6 +88,7 @@ void Solver::gather_subtree(uint32_t i) {
 }
 
 Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {
+  if (s_.gauss_seidel && h_[i].cluster) gather(h_[i]);
   if (s_.gauss_seidel && !h_[i].cluster && h_[i].depth == 0) gather_subtree(i);
   HNode& n = h_[i];
   if (n.child_count == 0) {
@@ -126,6 +131,17 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   }
   h_[i].B = area > 0 ? sum / area : Vec3{};
   h_[i].Bt = area > 0 ? sent / area : Vec3{};
+  if (s_.gauss_seidel && n.cluster && i < facing_bt_.size()) {
+    // What the cluster sends by direction, from its surfaces as they now are (facing_radiosity's sum,
+    // one level): links from it read this sweep's radiosity, as links from elements do.
+    std::array<Vec3, 6> f{};
+    for (uint32_t k = 0; k < count; ++k) {
+      const uint32_t c = h_.child(h_[i], k);
+      const HNode& child = h_[c];
+      for (size_t a = 0; a < 6; ++a) f[a] += child.cluster ? facing_bt_[c][a] : child.Bt * double(child.facing[a]);
+    }
+    facing_bt_[i] = f;
+  }
   return h_[i].B;
 }
 
