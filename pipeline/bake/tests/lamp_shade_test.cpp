@@ -5,9 +5,10 @@
 // what lights its inside, a bulb 20 cm away: it varies threefold over a face. Measured 1.54% RMS at the
 // medium default, 1.43% at --error 0.1 (the reference's standard error 1.0%); the table 36-46% dark at
 // medium (17.6%) while the shade's bottom, a close source of the table's points, was read part by part
-// without its twin, and 6.0% while the table stayed one element under the shade's one link. The sweep found the shade 17% off when its inside, seen by no
-// viewpoint, stayed one element a face and the outside's vertices departed from their own mean
-// instead of from the inside's (docs/numerics.md), and the table under the shade 24-29% dark when a
+// without its twin, and 6.0% while the table stayed one element under the shade's one link. The sweep
+// found the shade 17% off when its inside, seen by no viewpoint, stayed one element a face and the
+// outside's vertices departed from their own mean instead of from the inside's (docs/numerics.md),
+// and the table under the shade 24-29% dark when a
 // point's overfilled row (an occluder and what it hides both counted) was scaled down as a whole.
 #include <cstdio>
 

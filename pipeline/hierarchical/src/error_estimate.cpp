@@ -146,7 +146,7 @@ void Solver::measure_variation() {
         const double b = luminance(link_sent(l)) * l.F, g = gather ? reflected_sent(l) * l.F : b;
         H += b;
         G += g;
-        inner += b * double(l.inner) / 64.0;  // 0 but from an emitter (evaluate_elements)
+        inner += b * double(l.inner) / 64.0;  // 0 but from a luminaire (evaluate_elements)
         for (uint32_t k = 0; k < kids; ++k) {
           Hc[k] += b * double(l.share[k]);
           Gc[k] += g * double(l.share[k]);
@@ -158,10 +158,11 @@ void Solver::measure_variation() {
         worst = std::max(worst, rho * std::fabs(Hc[k] - H));
         squares += rho * rho * (Gc[k] - G) * (Gc[k] - G);
       }
-      // And inside the children, for the emitters' links: a lamp 2 mm under a ceiling lights a wall
-      // most two thirds of the way up and its top metre hardly at all, a peak inside each quadrant of
-      // the wall that the shares flatten (test AWallUnderAGrazingLampKeepsItsProfileAtACoarseError).
-      // Σ inner bounds it; where the bound passes the tolerance, the emitters' irradiance is taken at
+      // And inside the children, for the luminaires' links (emitters, and shades lit by punctual lights
+      // inside: Solver::luminaire): a lamp 2 mm under a ceiling lights a wall most two thirds of the
+      // way up and its top metre hardly at all, a peak inside each quadrant of the wall that the
+      // shares flatten (test AWallUnderAGrazingLampKeepsItsProfileAtACoarseError).
+      // Σ inner bounds it; where the bound passes the tolerance, the luminaires' irradiance is taken at
       // the centres of the children's quarters, so that transfers which cancel (a furnace's faces)
       // stay unsplit. Every link's inner variation, not only the emitters', refined the Cornell box to
       // the error a finer tolerance gives for as many links, and made ContactShadow's floor worse
@@ -187,7 +188,7 @@ void Solver::measure_variation() {
 }
 
 double Solver::emitted_inner(uint32_t i) const {
-  // The emitters' unoccluded irradiance at the centres of the quarters of each child (split_element
+  // The luminaires' unoccluded irradiance at the centres of the quarters of each child (split_element
   // twice), times the fraction of each source its link sees; the largest departure of a quarter from
   // its child's mean.
   const HNode& n = h_[i];
