@@ -83,10 +83,10 @@ double quality_error(const std::string& quality) {
   // The presets light bakers offer, as the refinement's tolerance relative to what each surface shows
   // (docs/accuracy.md measures what each delivers: at medium, the default, 1.0% weighted RMS on the
   // Cornell box and 2.0% in office-floor's visited rooms, a twentieth and a tenth of it).
-  if (quality == "draft") return 0.4;
-  if (quality == "medium") return 0.2;
-  if (quality == "high") return 0.1;
-  if (quality == "final") return 0.05;
+  if (quality == "draft") return kDraftError;
+  if (quality == "medium") return kMediumError;
+  if (quality == "high") return kHighError;
+  if (quality == "final") return kFinalError;
   throw InputError("--quality", quality, "unknown quality (available: draft, medium, high, final)", kExitBadArguments);
 }
 

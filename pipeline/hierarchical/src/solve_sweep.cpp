@@ -131,17 +131,10 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   }
   h_[i].B = area > 0 ? sum / area : Vec3{};
   h_[i].Bt = area > 0 ? sent / area : Vec3{};
-  if (s_.gauss_seidel && n.cluster && i < facing_bt_.size()) {
-    // What the cluster sends by direction, from its surfaces as they now are (facing_radiosity's sum,
-    // one level): links from it read this sweep's radiosity, as links from elements do.
-    std::array<Vec3, 6> f{};
-    for (uint32_t k = 0; k < count; ++k) {
-      const uint32_t c = h_.child(h_[i], k);
-      const HNode& child = h_[c];
-      for (size_t a = 0; a < 6; ++a) f[a] += child.cluster ? facing_bt_[c][a] : child.Bt * double(child.facing[a]);
-    }
-    facing_bt_[i] = f;
-  }
+  // What the cluster sends by direction, from its surfaces as they now are: links from it read this
+  // sweep's radiosity, as links from elements do.
+  if (s_.gauss_seidel && n.cluster && i < facing_bt_.size())
+    facing_bt_[i] = facing_from_children(h_, i, facing_bt_, [&](uint32_t k) { return h_[k].Bt; });
   return h_[i].B;
 }
 

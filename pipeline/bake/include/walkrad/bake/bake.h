@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "walkrad/bake/bake_caps.h"
+#include "walkrad/hierarchical/error_presets.h"
 
 namespace walkrad {
 
@@ -28,7 +29,7 @@ struct BakeSettings {
                                         // or "southwell" (classic: progressive refinement, southwell.h)
   // hierarchical: the relative error each surface may show (where the walkthrough looks, with
   // importance), e.g. 0.02 for 2%; quality_error() maps the named presets to it.
-  double error = 0.2;
+  double error = kDefaultError;
   double min_area = 0;      // hierarchical: smallest element, m² (0: the median polygon's side / 128, squared)
   double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30
   int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)

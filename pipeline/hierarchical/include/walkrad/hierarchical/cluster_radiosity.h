@@ -16,6 +16,27 @@
 
 namespace walkrad {
 
+// One cluster's sum from its children, the last first: a child cluster's own sums (facing[child]), an
+// element root's facing areas × value(root). A Gauss-Seidel sweep takes it again for a cluster whose
+// surfaces it has just updated (solve_sweep.cpp).
+template <class Value>
+std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, const std::vector<std::array<Vec3, 6>>& facing,
+                                         Value value) {
+  std::array<Vec3, 6> out{};
+  const HNode& n = h[cluster];
+  for (uint32_t k = n.child_count; k-- > 0;) {
+    const uint32_t c = h.child(n, k);
+    const HNode& child = h[c];
+    if (child.cluster) {
+      for (size_t a = 0; a < 6; ++a) out[a] += facing[c][a];
+    } else {  // an element root: its leaves share its normal
+      const Vec3 v = value(c);
+      for (size_t a = 0; a < 6; ++a) out[a] += v * double(child.facing[a]);
+    }
+  }
+  return out;
+}
+
 // By node, up to the last cluster (clusters only are read): for a cluster, Σ over its element roots of
 // facing[a] × value(root), value(k) node k's radiosity (an element root's: its leaves' area mean).
 template <class Value>
@@ -25,18 +46,9 @@ std::vector<std::array<Vec3, 6>> facing_radiosity(const Hierarchy& h, Value valu
   for (size_t k = 0; k < nodes.size(); ++k)
     if (nodes[k].cluster) clusters = k + 1;
   std::vector<std::array<Vec3, 6>> out(clusters);
-  // Children come after their parents: from the end, each node is complete before its parent takes it.
-  for (size_t k = nodes.size(); k-- > 0;) {
-    const HNode& n = nodes[k];
-    if (n.parent < 0 || !nodes[size_t(n.parent)].cluster) continue;
-    std::array<Vec3, 6>& parent = out[size_t(n.parent)];
-    if (n.cluster) {
-      for (size_t a = 0; a < 6; ++a) parent[a] += out[k][a];
-    } else {  // an element root: its leaves share its normal
-      const Vec3 v = value(uint32_t(k));
-      for (size_t a = 0; a < 6; ++a) parent[a] += v * double(n.facing[a]);
-    }
-  }
+  // Children come after their parents: from the end, each cluster is complete before its parent takes it.
+  for (size_t k = clusters; k-- > 0;)
+    if (nodes[k].cluster) out[k] = facing_from_children(h, uint32_t(k), out, value);
   return out;
 }
 

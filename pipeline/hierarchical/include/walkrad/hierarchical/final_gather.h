@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "walkrad/hierarchical/error_presets.h"
 #include "walkrad/hierarchical/hierarchy.h"
 #include "walkrad/visibility/ray_scene.h"
 
@@ -82,7 +83,7 @@ class DirectGather {
 struct GatherRefinement {
   const std::vector<uint8_t>* seen = nullptr;   // per input polygon, 1: gathered (null: all)
   const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none): split for both sides' lights
-  double error = 0.2;                           // relative to what the leaf shows
+  double error = kDefaultError;                 // relative to what the leaf shows
   double white = 0;                             // the display's white (luminance, W/m²)
   double min_area = 0;                          // no leaf below it
   int max_depth = 16;

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "walkrad/formats/scene.h"
+#include "walkrad/hierarchical/error_presets.h"
 #include "walkrad/hierarchical/hierarchy.h"
 #include "walkrad/visibility/ray_scene.h"
 #include "walkrad/visibility/volume_visibility.h"
@@ -42,7 +43,7 @@ struct RaySample {
 };
 
 struct HierarchicalSettings {
-  double error = 0.2;         // tolerance, relative to what each surface shows (error_estimate.cpp)
+  double error = kDefaultError;  // tolerance, relative to what each surface shows (error_estimate.cpp)
   bool use_importance = true; // weigh tolerances by importance when the hierarchy has view hits
   double min_area = 0;        // m²; elements are not split below it (0: default_min_area)
   int max_depth = 16;         // quadtree levels below an input polygon

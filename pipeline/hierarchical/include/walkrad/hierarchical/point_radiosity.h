@@ -54,9 +54,10 @@ class ClusterGather {
   // kPartSide² parts and their radiosity, evaluated at their centres (LeafRadiosity::at, without these
   // parts), as a ratio to the leaf's solved mean: LeafRadiosity then takes such a source part by part.
   // In parallel over the sources; the result depends on no thread count.
-  // twins (transmission_twins.h), where transmission is on: a transmitting source's parts are read
-  // as the mesher reads its vertices (with its twin), not as an opaque leaf's.
-  void resolve_close_sources(const std::vector<uint32_t>& leaves, const std::vector<uint32_t>* twins = nullptr);
+  // twins (transmission_twins.h; null where transmission is off): a transmitting source's parts are
+  // read as the mesher reads its vertices (with its twin), not as an opaque leaf's. No default, so that
+  // no caller forgets them (lamp-room's table under the shade came out 40% dark).
+  void resolve_close_sources(const std::vector<uint32_t>& leaves, const std::vector<uint32_t>* twins);
   static constexpr int kPartSide = 4;
   struct SourceParts {
     std::array<Polygon, kPartSide * kPartSide> shape;
