@@ -95,7 +95,7 @@ for name, (folder, args) in scenes.items():
 # their rank). The bakes at 1, 2 and 3 ranks are one process's with --solver jacobi, byte for byte; each
 # rank holds fewer links than one process, the office level's ranks about as many each, and at 2 ranks
 # its links' peak memory over the whole bake (a count of bytes, not a measurement: the same every run;
-# noted in each round and after the mesh) is at most 0.6 of one process's (issue 28).
+# noted in each round and after the mesh) is at most 0.65 of one process's (issue 28; 0.6 before hidden links were settled).
 for name, (folder, args) in scenes.items():
     args = [*args, "--solver", "jacobi"]
     plain = os.path.join(work, name + "-jacobi-plain")
@@ -124,7 +124,11 @@ for name, (folder, args) in scenes.items():
         # office level's many polygons fall within 10% of the mean (the Cornell box's 17 cannot).
         if name == "office" and max(held) > 1.1 * sum(held) / n:
             failures.append(f"{name} (jacobi), {n} ranks: links held {held}: not balanced")
-        if n == 2 and name == "office" and max(peaks) > 0.6 * whole_mb:
+        # Link memory, the largest rank's against one process's (each the capacity of the round's new-link
+        # list plus the held lists, at its largest): 0.51 when hidden links were still refined; since they are
+        # settled (Solver::settled_hidden) one process peaks at 27.4 MiB instead of 32.8 while the ranks'
+        # peak, set in an early round, stays at 16.6 MiB: 0.60.
+        if n == 2 and name == "office" and max(peaks) > 0.65 * whole_mb:
             failures.append(f"{name} (jacobi), 2 ranks: link memory {peaks} MiB against {whole_mb:.1f} for one process")
         if not same(plain, out):
             failures.append(f"{name} (jacobi), {n} ranks: the bake differs from one process's")

@@ -33,12 +33,12 @@ void Solver::exchange_plans(std::vector<uint32_t>& plan_of, std::vector<RemotePl
       const ReceiverPlan& p = batch[at - first];
       const std::vector<Link>& links = h_[uint32_t(at)].links;
       size_t listed = 0;
-      for (size_t k = 0; k < links.size(); ++k) listed += p.split_receiver || (k < p.action.size() && p.action[k] != kKeep);
+      for (size_t k = 0; k < links.size(); ++k) listed += k < p.action.size() && p.action[k] != kKeep;
       if (listed == 0) continue;
       words.push_back(uint32_t(at));
       words.push_back(uint32_t(listed) | (p.split_receiver ? 1u << 31 : 0u));
       for (size_t k = 0; k < links.size(); ++k) {
-        const uint8_t action = p.split_receiver ? uint8_t(kSplit) : uint8_t(p.action[k]);
+        const uint8_t action = uint8_t(p.action[k]);
         if (action == kKeep) continue;
         const Link& l = links[k];
         words.push_back(uint32_t(k));
@@ -90,7 +90,7 @@ Link as_link(const RemoteLink& r) {
 std::vector<std::vector<uint32_t>> Solver::remote_candidates(uint32_t i, const RemotePlan& plan) const {
   std::vector<std::vector<uint32_t>> out(plan.links.size());
   for (size_t k = 0; k < plan.links.size(); ++k)
-    if (plan.split_receiver || plan.links[k].action == kSplit) out[k] = link_candidates(i, as_link(plan.links[k]));
+    if (plan.links[k].action == kSplit) out[k] = link_candidates(i, as_link(plan.links[k]));
   return out;
 }
 
@@ -103,8 +103,6 @@ void Solver::apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vec
   if (plan.split_receiver) {
     ++stats_.refinements;
     ++stats_.receiver_splits;
-    for (size_t k = 0; k < plan.links.size(); ++k) split_link(i, as_link(plan.links[k]), candidates[k]);
-    return;
   }
   if (!links.empty()) {  // the kept links stay where they are held (refine adds none to i itself)
     h_[i].links.reserve(links.size() - plan.links.size());
@@ -117,11 +115,12 @@ void Solver::apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vec
   }
   for (size_t k = 0; k < plan.links.size(); ++k) {
     const RemoteLink& r = plan.links[k];
-    --stats_.links;
     if (r.action == kRecast) {
-      ++stats_.recast;
-      add_pending({i, r.source, (r.rays & 1) != 0, kHiddenRecast * int(r.samples), (r.rays & 2) != 0});
+      recast(i, as_link(r));
+    } else if (plan.split_receiver) {  // every other listed link goes down (settled hidden ones stay)
+      split_link(i, as_link(r), candidates[k]);
     } else {
+      --stats_.links;
       static const std::vector<uint32_t> kNone;
       Refinement out = serial_refinement();
       refine(out, i, r.source, ray_free(as_link(r)) ? &kNone : nullptr, true, &candidates[k]);

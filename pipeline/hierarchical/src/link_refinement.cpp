@@ -270,6 +270,12 @@ std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
                    h_[j].cluster ? UINT32_MAX : h_[j].polygon, nullptr);
 }
 
+void Solver::recast(uint32_t i, const Link& l) {
+  --stats_.links;
+  ++stats_.recast;
+  add_pending({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
+}
+
 void Solver::split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates) {
   // The pair's candidates, searched in the tree once (ReceiverPlan) and filtered for each child
   // (shaft.h: the children's shafts lie inside the pair's), not searched again from the root per child.
@@ -286,11 +292,17 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   if (links.empty()) return plan;
   // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
   // than its tolerance: every link goes down to the children.
+  // A wholly hidden link stays at the receiver: cast again if it was not yet, else settled (settled_hidden).
   if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
     plan.split_receiver = true;
+    plan.action.assign(links.size(), kSplit);
+    for (size_t k = 0; k < links.size(); ++k)
+      if (settled_hidden(links[k])) plan.action[k] = kKeep;
+      else if (recastable(links[k])) plan.action[k] = kRecast;
     if (!with_candidates) return plan;
     plan.candidates.resize(links.size());
-    for (size_t k = 0; k < links.size(); ++k) plan.candidates[k] = link_candidates(i, links[k]);
+    for (size_t k = 0; k < links.size(); ++k)
+      if (plan.action[k] == kSplit) plan.candidates[k] = link_candidates(i, links[k]);
     return plan;
   }
   // Each link: one that carries more than its share is refined again from here (refine splits it).
@@ -299,10 +311,9 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   plan.action.assign(links.size(), kKeep);
   for (size_t k = 0; k < links.size(); ++k) {
     const Link& l = links[k];
-    if (l.F == 0 && l.sigma > 0 && l.samples > 0 && l.samples < kHiddenRecast * s_.rays &&
-        worth_splitting(i, l.source, true, nullptr)) {
+    if (recastable(l) && worth_splitting(i, l.source, true, nullptr)) {
       plan.action[k] = kRecast;
-    } else if ((splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
+    } else if (!settled_hidden(l) && (splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
       plan.action[k] = kSplit;
       if (!with_candidates) continue;
       if (plan.candidates.empty()) plan.candidates.resize(links.size());  // most receivers split none
@@ -353,16 +364,20 @@ void Solver::refine_existing() {
       if (plan.split_receiver) {
         ++stats_.refinements;
         ++stats_.receiver_splits;
-        for (size_t k = 0; k < links.size(); ++k) split_link(i, links[k], plan.candidates[k]);
+        for (size_t k = 0; k < links.size(); ++k)
+          if (plan.action[k] == kKeep) h_[i].links.push_back(links[k]);
+        for (size_t k = 0; k < links.size(); ++k) {
+          if (plan.action[k] == kRecast) recast(i, links[k]);
+          else if (plan.action[k] == kSplit) split_link(i, links[k], plan.candidates[k]);
+        }
+        plan = ReceiverPlan{};
         continue;
       }
       h_[i].links.reserve(size_t(std::count(plan.action.begin(), plan.action.end(), kKeep)));  // exact: see evaluate_pending
       for (size_t k = 0; k < links.size(); ++k) {
         const Link& l = links[k];
         if (plan.action[k] == kRecast) {
-          --stats_.links;
-          ++stats_.recast;
-          add_pending({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
+          recast(i, l);
         } else if (plan.action[k] == kSplit) {
           --stats_.links;
           static const std::vector<uint32_t> kNone;
