@@ -291,14 +291,16 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   const std::vector<Link>& links = h_[i].links;
   if (links.empty()) return plan;
   // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
-  // than its tolerance: every link goes down to the children.
-  // A wholly hidden link stays at the receiver: cast again if it was not yet, else settled (settled_hidden).
+  // than its tolerance: every link goes down to the children but the wholly hidden, which stay, settled
+  // (settled_hidden) or to be cast again where what they might carry matters, as below.
   if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
     plan.split_receiver = true;
     plan.action.assign(links.size(), kSplit);
-    for (size_t k = 0; k < links.size(); ++k)
-      if (settled_hidden(links[k])) plan.action[k] = kKeep;
-      else if (recastable(links[k])) plan.action[k] = kRecast;
+    for (size_t k = 0; k < links.size(); ++k) {
+      const Link& l = links[k];
+      if (recastable(l)) plan.action[k] = worth_splitting(i, l.source, true, nullptr) ? kRecast : kKeep;
+      else if (settled_hidden(l)) plan.action[k] = kKeep;
+    }
     if (!with_candidates) return plan;
     plan.candidates.resize(links.size());
     for (size_t k = 0; k < links.size(); ++k)

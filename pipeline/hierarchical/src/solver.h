@@ -155,15 +155,14 @@ class Solver {
 
   // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
   static constexpr int kHiddenRecast = 8;
-  // A link cast again with kHiddenRecast times the rays whose every ray was still blocked: settled at
-  // 0, its σ a noise the estimate keeps. It is neither split nor sent down when its receiver splits:
-  // a child's link casts no more rays per unit of area than the recast did, and through a wall each
-  // level of a split cast 4 times the rays to find nothing (office-floor 16 rooms: 3.2 M links between
-  // its two wings, every one blocked, 123 M of its 882 M rays).
-  // Wholly hidden and not yet cast again.
+  // A link whose every ray was blocked, not yet cast again with kHiddenRecast times the rays.
   bool recastable(const Link& l) const {
     return l.F == 0 && l.sigma > 0 && l.samples > 0 && int(l.samples) < kHiddenRecast * s_.rays;
   }
+  // Cast again and every ray still blocked: settled at 0, its σ a noise the estimate keeps. It is neither
+  // split nor sent down when its receiver splits: a child's link casts no more rays per unit of area than
+  // the recast did, and through a wall each level of a split cast 4 times the rays to find nothing
+  // (office-floor 16 rooms: 3.2 M links between its two wings, every one blocked, 123 M of its 882 M rays).
   bool settled_hidden(const Link& l) const {
     return l.F == 0 && l.sigma > 0 && (l.rays & 2) == 0 && int(l.samples) >= kHiddenRecast * s_.rays;
   }
