@@ -126,8 +126,8 @@ for name, (folder, args) in scenes.items():
             failures.append(f"{name} (jacobi), {n} ranks: links held {held}: not balanced")
         # Link memory, the largest rank's against one process's (each the capacity of the round's new-link
         # list plus the held lists, at its largest): 0.51 when hidden links were still refined; since they are
-        # settled (Solver::settled_hidden) one process peaks at 27.4 MiB instead of 32.8 while the ranks'
-        # peak, set in an early round, stays at 16.6 MiB: 0.60.
+        # settled (Solver::settled_hidden) one process peaks at 27.5 MiB instead of 32.8 while the largest
+        # rank's stays at 16.6 MiB: 0.60.
         if n == 2 and name == "office" and max(peaks) > 0.65 * whole_mb:
             failures.append(f"{name} (jacobi), 2 ranks: link memory {peaks} MiB against {whole_mb:.1f} for one process")
         if not same(plain, out):

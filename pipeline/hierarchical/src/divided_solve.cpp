@@ -114,17 +114,9 @@ void Solver::apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vec
     std::vector<Link>().swap(links);
   }
   for (size_t k = 0; k < plan.links.size(); ++k) {
-    const RemoteLink& r = plan.links[k];
-    if (r.action == kRecast) {
-      recast(i, as_link(r));
-    } else if (plan.split_receiver) {  // every other listed link goes down (settled hidden ones stay)
-      split_link(i, as_link(r), candidates[k]);
-    } else {
-      --stats_.links;
-      static const std::vector<uint32_t> kNone;
-      Refinement out = serial_refinement();
-      refine(out, i, r.source, ray_free(as_link(r)) ? &kNone : nullptr, true, &candidates[k]);
-    }
+    const Link l = as_link(plan.links[k]);
+    if (plan.links[k].action == kRecast) recast(i, l);
+    else replace_link(i, l, plan.split_receiver, candidates[k]);
   }
 }
 

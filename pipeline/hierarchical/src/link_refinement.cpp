@@ -276,6 +276,18 @@ void Solver::recast(uint32_t i, const Link& l) {
   add_pending({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
 }
 
+void Solver::replace_link(uint32_t i, const Link& l, bool split_receiver, std::vector<uint32_t>& candidates) {
+  if (split_receiver) {
+    split_link(i, l, candidates);
+    return;
+  }
+  --stats_.links;
+  static const std::vector<uint32_t> kNone;
+  // Ray-free: no candidate, filtered as a parent's empty list; else the pair's own, searched above.
+  Refinement out = serial_refinement();
+  refine(out, i, l.source, ray_free(l) ? &kNone : nullptr, true, &candidates);
+}
+
 void Solver::split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates) {
   // The pair's candidates, searched in the tree once (ReceiverPlan) and filtered for each child
   // (shaft.h: the children's shafts lie inside the pair's), not searched again from the root per child.
@@ -366,29 +378,13 @@ void Solver::refine_existing() {
       if (plan.split_receiver) {
         ++stats_.refinements;
         ++stats_.receiver_splits;
-        for (size_t k = 0; k < links.size(); ++k)
-          if (plan.action[k] == kKeep) h_[i].links.push_back(links[k]);
-        for (size_t k = 0; k < links.size(); ++k) {
-          if (plan.action[k] == kRecast) recast(i, links[k]);
-          else if (plan.action[k] == kSplit) split_link(i, links[k], plan.candidates[k]);
-        }
-        plan = ReceiverPlan{};
-        continue;
       }
       h_[i].links.reserve(size_t(std::count(plan.action.begin(), plan.action.end(), kKeep)));  // exact: see evaluate_pending
+      for (size_t k = 0; k < links.size(); ++k)
+        if (plan.action[k] == kKeep) h_[i].links.push_back(links[k]);
       for (size_t k = 0; k < links.size(); ++k) {
-        const Link& l = links[k];
-        if (plan.action[k] == kRecast) {
-          recast(i, l);
-        } else if (plan.action[k] == kSplit) {
-          --stats_.links;
-          static const std::vector<uint32_t> kNone;
-          // Ray-free: no candidate, filtered as a parent's empty list; else the pair's own, searched above.
-          Refinement out = serial_refinement();
-          refine(out, i, l.source, ray_free(l) ? &kNone : nullptr, true, &plan.candidates[k]);
-        } else {
-          h_[i].links.push_back(l);
-        }
+        if (plan.action[k] == kRecast) recast(i, links[k]);
+        else if (plan.action[k] == kSplit) replace_link(i, links[k], plan.split_receiver, plan.candidates[k]);
       }
       plan = ReceiverPlan{};  // its lists are spent: free them now
     }

@@ -22,10 +22,11 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance) {
   // through clusters, swapped their excess every sweep (a Jacobi step, eigenvalues ±ρF): office-floor's
   // last round took 23 sweeps at 8 rooms, 15 now (docs/performance.md).
   if (s_.indirect) facing_bt_ = facing_radiosity(h_, [&](uint32_t k) { return nodes[k].Bt; });
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i)
-      if (!s_.gauss_seidel && here(uint32_t(i))) gather(nodes[i]);
-  });
+  if (!s_.gauss_seidel)  // Jacobi: every node gathers first (Gauss-Seidel gathers in push_pull)
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        if (here(uint32_t(i))) gather(nodes[i]);
+    });
   if (divided_) share_gathered();
   change_ = 0;
   is.emitted = is.absorbed = is.residual = Vec3{};

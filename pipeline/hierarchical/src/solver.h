@@ -155,16 +155,16 @@ class Solver {
 
   // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
   static constexpr int kHiddenRecast = 8;
-  // A link whose every ray was blocked, not yet cast again with kHiddenRecast times the rays.
-  bool recastable(const Link& l) const {
-    return l.F == 0 && l.sigma > 0 && l.samples > 0 && int(l.samples) < kHiddenRecast * s_.rays;
-  }
+  // A link whose every ray was blocked: 0, with what its rays could have missed as σ (evaluate).
+  static bool hidden(const Link& l) { return l.F == 0 && l.sigma > 0; }
+  // Hidden, not yet cast again with kHiddenRecast times the rays.
+  bool recastable(const Link& l) const { return hidden(l) && l.samples > 0 && int(l.samples) < kHiddenRecast * s_.rays; }
   // Cast again and every ray still blocked: settled at 0, its σ a noise the estimate keeps. It is neither
   // split nor sent down when its receiver splits: a child's link casts no more rays per unit of area than
   // the recast did, and through a wall each level of a split cast 4 times the rays to find nothing
   // (office-floor 16 rooms: 3.2 M links between its two wings, every one blocked, 123 M of its 882 M rays).
   bool settled_hidden(const Link& l) const {
-    return l.F == 0 && l.sigma > 0 && (l.rays & 2) == 0 && int(l.samples) >= kHiddenRecast * s_.rays;
+    return hidden(l) && (l.rays & 2) == 0 && int(l.samples) >= kHiddenRecast * s_.rays;
   }
   // A link's rays double past this many candidate blockers in its shaft, and double again past kMany.
   static constexpr size_t kSomeBlockers = 4, kManyBlockers = 64;
@@ -307,6 +307,9 @@ class Solver {
 
   // Replaces link l (to receiver i) by the same link cast with kHiddenRecast times its rays.
   void recast(uint32_t i, const Link& l);
+  // Replaces link l (to receiver i) by finer links: from the receiver's children where the receiver
+  // splits (split_link), else from whichever end refine splits; candidates: the pair's.
+  void replace_link(uint32_t i, const Link& l, bool split_receiver, std::vector<uint32_t>& candidates);
   // Replaces link l (to receiver i) by links from the receiver's children; candidates: the pair's.
   void split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates);
   // An existing link that needed no rays had no candidate occluder, nor have its children, whose
