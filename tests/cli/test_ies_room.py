@@ -79,7 +79,11 @@ again = os.path.join(work, "bake-converted")
 subprocess.run([walkrad, "bake", converted, "-o", again, "-q"], check=True)
 emitted = [json.load(open(os.path.join(d, "report.json")))["energy_audit"]["emitted_w"] for d in (bake, again)]
 print("emitted (W, original / converted):", emitted)
-check(all(abs(a - b) <= 1e-5 * a for a, b in zip(*emitted)), f"the converted scene sheds other light: {emitted}")
+# The two bakes' elements differ a little (the converted file numbers its nodes otherwise, and each
+# link draws its own random stream), and the luminaires' power is integrated over the elements they
+# light (4 × 4 points each): measured 6.4e-6 apart at 2016279, 1.3e-5 after the refinement became
+# breadth first. A luminaire lost or rescaled in conversion moves it by a percent or more.
+check(all(abs(a - b) <= 1e-4 * a for a, b in zip(*emitted)), f"the converted scene sheds other light: {emitted}")
 
 for f in failures:
     print("FAIL:", f)

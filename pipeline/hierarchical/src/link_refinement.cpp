@@ -2,52 +2,18 @@
 // Greenberg 1994) by the error each receiver is left with (hierarchical_solver.h): the first pass
 // links nodes as high as they may be linked; later passes split the receivers whose transfers fall
 // unevenly on them and the sources whose radiosity the receiver needs in finer detail. Shafts carry
-// the candidate occluders down.
+// the candidate occluders down; the pairs themselves are refined in pair_refinement.cpp.
 #include "solver.h"
 
 #include <algorithm>
-#include <atomic>
-#include <cmath>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "walkrad/core/rounding.h"
 
+
 namespace walkrad::hierarchical_detail {
-
-namespace {
-
-// Distance between two boxes (0 when they overlap or touch).
-double box_distance(const Bounds& a, const Bounds& b) {
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double gap = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
-    d2 += gap * gap;
-  }
-  return std::sqrt(d2);
-}
-
-// True when every point of the other node lies on or behind the element's plane: the element sees
-// nothing of it. An element other is tested by its corners (a convex polygon lies behind a plane when
-// they do), a cluster by its box's: the boxes of two tilted facets side by side on a convex object
-// (a chair's, a lamp's) reach in front of each other's planes, and the pair was linked, cast its rays
-// and dropped (half of MGF office3's first links, 39% of their rays).
-bool behind(const HNode& element, const HNode& other) {
-  const double tol = 1e-9 * (element.radius + 1e-30) + rounding_at(element.center);
-  auto in_front = [&](const Vec3& p) { return dot(p - element.shape.v[0], element.normal) > tol; };
-  if (!other.cluster) {
-    for (int k = 0; k < other.shape.count; ++k)
-      if (in_front(other.shape.v[size_t(k)])) return false;
-    return true;
-  }
-  const Bounds& box = other.bounds;
-  for (int c = 0; c < 8; ++c)
-    if (in_front(Vec3(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z))) return false;
-  return true;
-}
-
-}  // namespace
 
 void Solver::refine_for_lights() {
   if (!lights()) return;
@@ -76,11 +42,6 @@ void Solver::mark_two_sided_clusters() {
   }
 }
 
-bool Solver::close_pair(uint32_t i, uint32_t j) const {
-  const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
-  return reach > 0 && clearly_greater(0.5 * reach, box_distance(h_[i].bounds, h_[j].bounds));
-}
-
 std::vector<uint8_t> Solver::under_close_pairs() const {
   std::vector<uint8_t> out(h_.nodes().size(), 0);
   if (!importance_) return out;  // every close pair matters (close_matters): none is left whole
@@ -102,132 +63,6 @@ bool Solver::splittable(uint32_t i) const {
   const HNode& n = h_[i];
   if (n.cluster) return n.child_count > 0;
   return n.depth < s_.max_depth && n.area * 0.25 >= min_area_;
-}
-
-void Solver::self_pairs(uint32_t i, std::vector<std::pair<uint32_t, uint32_t>>& pairs) const {
-  if (!h_[i].cluster) return;
-  const uint32_t count = h_[i].child_count;
-  for (uint32_t a = 0; a < count; ++a)
-    for (uint32_t b = 0; b < count; ++b) {
-      const uint32_t ca = h_.child(h_[i], a), cb = h_.child(h_[i], b);
-      if (ca == cb) self_pairs(ca, pairs);
-      else pairs.push_back({ca, cb});
-    }
-}
-
-void Solver::refine_first() {
-  // refine(root, root) comes down to refine(a, b) for the pairs self_pairs lists, in that order. Before
-  // the first solve only cluster ends split (nothing is solved, so only a cluster too close or a
-  // two-sided one forces a split, and it is the cluster end that splits): the pairs are refined in
-  // parallel, each into its own list, and the lists joined in order, as one serial pass would have
-  // made them. Should an element need splitting (a node made: order matters), the pass is made again
-  // serially.
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  self_pairs(h_.root(), pairs);
-  std::vector<std::vector<NewLink>> found(pairs.size());
-  std::vector<uint64_t> splits(pairs.size(), 0);
-  std::atomic<bool> blocked{false};
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end() && !blocked; ++k) {
-      Refinement out{&found[k], splits[k]};
-      refine(out, pairs[k].first, pairs[k].second, nullptr);
-      if (out.blocked) blocked = true;
-    }
-  });
-  if (blocked) {
-    Refinement out = serial_refinement();
-    refine(out, h_.root(), h_.root(), nullptr);
-    return;
-  }
-  size_t total = 0;
-  for (const std::vector<NewLink>& f : found) total += f.size();
-  if (s_.check_limits) s_.check_limits("refinement", (pending_.size() + total) * sizeof(Pending));
-  pending_.reserve(pending_.size() + total);
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    for (const NewLink& f : found[k]) add_pending({f.receiver, f.source, f.need_rays, f.samples, f.volume});
-    stats_.refinements += splits[k];
-    std::vector<NewLink>().swap(found[k]);
-  }
-}
-
-void Solver::refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool force,
-                    std::vector<uint32_t>* own) {
-  if (i == j) {
-    if (!h_[i].cluster) return;  // a planar element does not see itself
-    const uint32_t count = h_[i].child_count;
-    for (uint32_t a = 0; a < count; ++a)
-      for (uint32_t b = 0; b < count; ++b) refine(out, h_.child(h_[i], a), h_.child(h_[i], b), parent);
-    return;
-  }
-  {
-    const HNode& ri = h_[i];
-    const HNode& sj = h_[j];
-    if (!ri.cluster && !sj.cluster && ri.polygon == sj.polygon) return;  // coplanar
-    if (!ri.cluster && behind(ri, sj)) return;
-    if (!sj.cluster && behind(sj, ri)) return;
-  }
-  // A cluster is linked only from far enough away (close_pair): closer, a surface of the cluster may
-  // lie centimetres from the other end (a bookcase against a wall), where the point-sampled kernel
-  // 1/r² has huge variance and the cluster's average radiosity says nothing of that surface. Where the
-  // walkthrough does not look the pair stays whole (close_matters; its kernel bounded: evaluate; its
-  // receivers' rows left unscaled: under_close_pairs).
-  const bool must_split = (close_pair(i, j) && close_matters(i)) || two_sided(i) || two_sided(j);
-
-  // Candidates between the two: the parent's list filtered by this pair's shaft.
-  const Shaft shaft(h_[i].bounds, h_[j].bounds);
-  const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
-  // With compact lists from a parent, the list itself is built only for a pair that splits again;
-  // a pair that becomes a link needs only its count, up to the thresholds below.
-  const bool lazy = compact() && parent;
-  std::vector<uint32_t> candidates;
-  if (!lazy) candidates = own ? std::move(*own) : occluders(i, j, shaft, ex_i, ex_j, parent);
-  const size_t listed = lazy ? count_compact_candidates(h_.tree(), shaft, *parent, ex_i, ex_j, kManyBlockers + 1)
-                        : compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j)
-                                    : candidates.size();
-  const bool split = force || must_split || worth_splitting(i, j, listed > 0);
-
-  if (split) {
-    const bool si = splittable(i), sj = splittable(j);
-    if (si || sj) {
-      bool split_receiver = si && (!sj || !clearly_greater(h_[j].radius, h_[i].radius));
-      if (must_split && si && sj && h_[i].cluster != h_[j].cluster) split_receiver = h_[i].cluster;
-      if (must_split && !(split_receiver ? h_[i].cluster : h_[j].cluster) && (split_receiver ? sj : si) &&
-          (split_receiver ? h_[j].cluster : h_[i].cluster))
-        split_receiver = !split_receiver;  // split the cluster end first
-      const uint32_t end = split_receiver ? i : j;
-      if (out.found && !h_[end].cluster && h_[end].child_count == 0) {
-        out.blocked = true;  // a node to make: not while other pairs are refined
-        return;
-      }
-      if (lazy) candidates = occluders(i, j, shaft, ex_i, ex_j, parent);
-      h_.subdivide(end);
-      ++out.refinements;
-      const uint32_t count = h_[end].child_count;
-      for (uint32_t k = 0; k < count && !out.blocked; ++k) {
-        const uint32_t c = h_.child(h_[end], k);
-        if (split_receiver) refine(out, c, j, &candidates);
-        else refine(out, i, c, &candidates);
-      }
-      return;
-    }
-  }
-  // More rays where more can block.
-  // Volumes count as one blocker: their transmittance varies smoothly, not all or nothing.
-  size_t volumes = 0;
-  for (uint32_t c : candidates) volumes += (c & kVolumeTags) != 0;
-  const size_t blockers = listed - volumes + (volumes > 0);
-  int samples = s_.rays;
-  if (blockers > kSomeBlockers) samples *= 2;
-  if (blockers > kManyBlockers) samples *= 2;
-  // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
-  const bool need_rays = s_.visibility && blockers > size_t(volumes > 0), volume = s_.visibility && volumes > 0;
-  if (out.found) {
-    out.found->push_back({i, j, samples, need_rays, volume});
-    return;
-  }
-  if (s_.check_limits && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
-    s_.check_limits("refinement", 2 * pending_.capacity() * sizeof(Pending));
-  add_pending({i, j, need_rays, samples, volume});
 }
 
 std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
@@ -282,20 +117,23 @@ void Solver::replace_link(uint32_t i, const Link& l, bool split_receiver, std::v
     return;
   }
   --stats_.links;
-  static const std::vector<uint32_t> kNone;
   // Ray-free: no candidate, filtered as a parent's empty list; else the pair's own, searched above.
-  Refinement out = serial_refinement();
-  refine(out, i, l.source, ray_free(l) ? &kNone : nullptr, true, &candidates);
+  static const std::vector<uint32_t> kNone;
+  PairTask t{i, l.source, ray_free(l) ? &kNone : nullptr, true};
+  if (!ray_free(l)) {
+    t.has_own = true;
+    t.own = std::move(candidates);
+  }
+  queued_pairs_.push_back(std::move(t));
 }
 
-void Solver::split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates) {
+void Solver::split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates) {
   // The pair's candidates, searched in the tree once (ReceiverPlan) and filtered for each child
   // (shaft.h: the children's shafts lie inside the pair's), not searched again from the root per child.
-  const uint32_t j = l.source;
   h_.subdivide(i);
   --stats_.links;
-  Refinement out = serial_refinement();
-  for (uint32_t k = 0; k < h_[i].child_count; ++k) refine(out, h_.child(h_[i], k), j, &candidates);
+  const std::vector<uint32_t>& list = queued_lists_.emplace_back(std::move(candidates));
+  for (uint32_t k = 0; k < h_[i].child_count; ++k) queued_pairs_.push_back({h_.child(h_[i], k), l.source, &list});
 }
 
 Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) const {
@@ -386,8 +224,11 @@ void Solver::refine_existing() {
         if (plan.action[k] == kRecast) recast(i, links[k]);
         else if (plan.action[k] == kSplit) replace_link(i, links[k], plan.split_receiver, plan.candidates[k]);
       }
-      plan = ReceiverPlan{};  // its lists are spent: free them now
+      plan = ReceiverPlan{};  // its lists are spent (or handed on): free them now
     }
+    refine_pairs(std::move(queued_pairs_));
+    queued_pairs_.clear();
+    queued_lists_.clear();
   }
 }
 

@@ -102,8 +102,12 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     const Vec3 tau = transmittance(n);
     const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
     const Vec3 b = n.emission + mul(n.rho, H + n.D) + through;
+    // The change, relative to the leaf's radiosity and weighed by what the walkthrough sees of it
+    // (display_weight: 1 without importance), as its refinement tolerance is: a room no viewpoint sees
+    // nor lights through others need not converge further than what it sends into the seen ones.
     const double scale = std::max(max_component(b), change_floor_);
-    if (scale > 0) change_ = std::max(change_, max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
+    if (scale > 0)
+      change_ = std::max(change_, display_weight(i) * max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
     // The residual of the leaf's equation before this update: |E + ρH − B| A.
     const Vec3 r = b - n.B;
     is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -218,35 +219,45 @@ class Solver {
   // scaling is not applied to them (normalise_closed_rows).
   std::vector<uint8_t> under_close_pairs() const;
 
-  // A link refine() found, as a pair refined beside others keeps it until the lists are joined (a
-  // fifth of a Pending: the lists and the round's list are held together for a moment).
-  struct NewLink {
-    uint32_t receiver, source;
-    int32_t samples;
-    bool need_rays, volume;
-  };
-  // Where refine() puts what it finds: the links to evaluate, straight into the round's list
-  // (add_pending), or into a pair's own (found: other pairs are refined at the same time, so no node may
-  // be made, and a split that would make one sets blocked and stops); and the count of splits.
-  struct Refinement {
-    std::vector<NewLink>* found;
-    uint64_t& refinements;
-    bool blocked = false;
-  };
-  Refinement serial_refinement() { return {nullptr, stats_.refinements}; }
-
-  // The first refinement, refine(root, root) with its independent pairs in parallel (refine_first).
+  // The first refinement: refine_pairs from (root, root), as high as links may go.
   void refine_first();
-  // The pairs (a, b), a ≠ b, that refine(i, i) comes down to, in the order it takes them.
-  void self_pairs(uint32_t i, std::vector<std::pair<uint32_t, uint32_t>>& pairs) const;
 
-  // Refines the interaction of receiver i with source j: links it, drops it, or splits an end and
-  // recurses. parent: the candidate occluders of the enclosing link's shaft (null: from the tree).
-  // split: split this pair whatever the tests say (refine_existing decided it with the link's own
-  // form factor, which a new pair does not have yet). own: with no parent, the pair's own list,
-  // already searched from the tree (taken).
-  void refine(Refinement& out, uint32_t i, uint32_t j, const std::vector<uint32_t>* parent, bool split = false,
-              std::vector<uint32_t>* own = nullptr);
+  // A pair of nodes to refine (refine_pairs): receiver i, source j; the candidate occluders its shaft
+  // filters (parent: its parent pair's list; none: its own, or searched from the tree); force: split it
+  // whatever the tests say (refine_existing decided it with the link's own form factor, which a new
+  // pair does not have yet).
+  struct PairTask {
+    uint32_t i, j;
+    const std::vector<uint32_t>* parent;
+    bool force;
+    bool has_own = false;
+    std::vector<uint32_t> own;
+    PairTask(uint32_t i_, uint32_t j_, const std::vector<uint32_t>* parent_ = nullptr, bool force_ = false)
+        : i(i_), j(j_), parent(parent_), force(force_) {}
+  };
+  // What the refinement decides for one pair from the hierarchy as it stands: drop it (coplanar or
+  // facing away), open a cluster's self-pair into its children's pairs, link it with so many rays, or
+  // split one end (the receiver or the source) and refine the children's pairs with its list.
+  enum class PairKind : uint8_t { kDrop, kSelf, kLink, kSplitEnd };
+  struct PairOutcome {
+    PairKind kind = PairKind::kDrop;
+    bool split_receiver = false, need_rays = false, volume = false;
+    int32_t samples = 0;
+    std::vector<uint32_t> candidates;  // kSplitEnd: the pair's list, which its children's shafts filter
+  };
+  // Decides a pair without changing anything (thread-safe; t.own is taken).
+  PairOutcome decide_pair(PairTask& t) const;
+  // Refines pairs level by level (Hanrahan, Salzman & Aupperle 1991, breadth first): each level's
+  // decisions, whose shaft tests are most of the refinement's time, in parallel; then, in the level's
+  // order, its links appended to the round's list and its splits made (nodes numbered in that order),
+  // their children's pairs forming the next level. A decision reads only nodes as the splits leave
+  // them (a child starts from its parent's values), not what other pairs decided, so nodes and links
+  // come out the same whatever the thread count.
+  void refine_pairs(std::vector<PairTask> tasks);
+  // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
+  // and the lists they filter (a deque: a list stays where it is while others are added).
+  std::vector<PairTask> queued_pairs_;
+  std::deque<std::vector<uint32_t>> queued_lists_;
 
   // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
   // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
@@ -308,10 +319,12 @@ class Solver {
   // Replaces link l (to receiver i) by the same link cast with kHiddenRecast times its rays.
   void recast(uint32_t i, const Link& l);
   // Replaces link l (to receiver i) by finer links: from the receiver's children where the receiver
-  // splits (split_link), else from whichever end refine splits; candidates: the pair's.
+  // splits (split_link), else from whichever end the refinement splits; candidates: the pair's (taken).
+  // The pairs are queued (queued_pairs_) and refined with the batch's others.
   void replace_link(uint32_t i, const Link& l, bool split_receiver, std::vector<uint32_t>& candidates);
-  // Replaces link l (to receiver i) by links from the receiver's children; candidates: the pair's.
-  void split_link(uint32_t i, const Link& l, const std::vector<uint32_t>& candidates);
+  // Replaces link l (to receiver i) by pairs from the receiver's children, split now; candidates: the
+  // pair's (taken).
+  void split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates);
   // An existing link that needed no rays had no candidate occluder, nor have its children, whose
   // shafts lie inside its own.
   bool ray_free(const Link& l) const;
@@ -373,7 +386,7 @@ class Solver {
   // with_importance is false). Jacobi gathers every node from the previous sweep's radiosity;
   // Gauss-Seidel gathers each input polygon's quadtree just before pushing it down, so it sees what
   // the polygons before it got this sweep (clusters still gather first). Returns the largest relative
-  // change of a leaf's radiosity.
+  // change of a leaf's radiosity, weighed by its display weight.
   double solve_sweep(IterationStats& is, bool with_importance = true);
 
   // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well

@@ -49,7 +49,7 @@ struct HierarchicalSettings {
   int max_depth = 16;         // quadtree levels below an input polygon
   int rays = 16;              // visibility rays (or Monte Carlo samples) per link, ×2 with more than 4
                               // candidate occluders, ×4 with more than 64
-  double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps
+  double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps, × its display weight
   int max_iterations = 64;    // refine + solve rounds
   int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
   bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
@@ -96,7 +96,7 @@ struct HierarchicalSettings {
 
 struct IterationStats {
   uint64_t links = 0, new_links = 0, elements = 0, rays = 0;
-  double change = 0;                   // largest relative change of B at the leaves
+  double change = 0;                   // largest relative change of B at the leaves (× display weight)
   int sweeps = 0;                      // gather/push-pull sweeps this round
   Vec3 emitted, absorbed;              // W, at the leaves
   Vec3 residual;                       // W: Σ A |E + ρH − B| over the leaves, before the last sweep
