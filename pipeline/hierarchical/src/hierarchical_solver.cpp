@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#if defined(__GLIBC__)
-#include <malloc.h>  // malloc_trim
-#endif
 
 #include "solver.h"
 
+#include "walkrad/core/free_memory.h"
 #include "walkrad/core/ranks.h"
 #include "walkrad/hierarchical/link_transport.h"
 
@@ -72,20 +70,6 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
   }
 }
 
-namespace {
-
-// The refinement's candidate lists and the round's list of new links, made and freed by every thread,
-// stay in glibc's per-thread arenas as free chunks (the 150-room level held 0.7 GB more after its
-// solve once the refinement's decisions were made in parallel): handed back to the system after each
-// pass, the next pass's peak starts from what is in use.
-void release_free_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
-
-}  // namespace
-
 void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   RoundState state;
   if (s_.resume) state = load_state(*s_.resume);
@@ -110,6 +94,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       refine_existing();
     }
     if (s_.check_limits) s_.check_limits("refinement", 0);
+    // The refinement's lists, made by both threads: without this the 150-room level held 0.7 GB
+    // more after its solve once its decisions were made in parallel.
     release_free_memory();
     if (lights()) compute_missing_direct();  // elements the refinement created
     is.new_links = new_link_count() - before;

@@ -143,7 +143,10 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
       c.leaf = i;
     }
     return c.radiosity->at(x, gathered);
-  }, gather, face_rank);
+  }, gather, face_rank, [&] {
+    cache.clear();  // the leaves' readings, and what they read
+    if (point.read) point.read();
+  });
 }
 
 }  // namespace walkrad

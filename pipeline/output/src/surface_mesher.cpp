@@ -85,7 +85,7 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
 }  // namespace
 
 SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather,
-                       const FaceRanks& face_rank) {
+                       const FaceRanks& face_rank, const std::function<void()>& read) {
   SurfaceMesh surface;
   if (faces.empty()) return surface;
   Bounds bounds;
@@ -302,6 +302,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
       share_blocks(value, corner_blocks);
     }
   }
+  if (read) read();
   std::vector<Vec3> sum(slots), rho(slots);
   std::vector<double> weight(slots, 0.0);
   for (size_t i = 0; i < faces.size(); ++i)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "walkrad/formats/chunk.h"
@@ -33,6 +34,9 @@ struct PointSolution {
     uint64_t contact_bands = 0;  // near-contact band segments cut along (contact_split.h)
   };
   Counts* counts = nullptr;
+  // Called once the mesh has read the solution at its points (mesh_faces' read), before the vertices'
+  // direct light is gathered and the mesh written: the hierarchy's links may be freed then.
+  std::function<void()> read;
 };
 
 // exposure: display colour = B/π × exposure, clamped to [0, 1].

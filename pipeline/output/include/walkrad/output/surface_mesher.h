@@ -60,8 +60,10 @@ struct VertexGather {
 // Under mpirun, the rank on which at(face, …) can be read (the one holding the links of its leaf:
 // walkrad/hierarchical/link_owners.h); without it the faces are cut into blocks of equal cost.
 using FaceRanks = std::function<int(size_t face)>;
-
+// read, when given, is called once every reading of at is taken, before the vertices' direct light is
+// gathered and the mesh written: what at reads may be freed then (a million-face level's links: 0.8 GB).
 SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at = {},
-                       const VertexGather& gather = {}, const FaceRanks& face_rank = {});
+                       const VertexGather& gather = {}, const FaceRanks& face_rank = {},
+                       const std::function<void()>& read = {});
 
 }  // namespace walkrad
