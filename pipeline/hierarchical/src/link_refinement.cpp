@@ -181,8 +181,10 @@ void Solver::refine_existing() {
   // What to do with each receiver's links depends only on the state before this pass: a split adds
   // nodes and pending links but changes no existing node's links, radiosity, bounds or measures. So
   // the decisions and the split links' candidate lists (searched from the tree's root: a quarter of the
-  // refinement's time) are made in parallel, a batch of receivers at a time, and applied in order:
-  // nodes and links come out exactly as from one serial pass, whatever the thread count.
+  // refinement's time) are made in parallel, a batch of receivers at a time, and applied in order; the
+  // pairs they hand on are refined with the batch's others (refine_pairs: level by level, each level
+  // decided in parallel and applied in order): nodes and links come out the same whatever the thread
+  // count.
   // Divisible (Jacobi sweeps, link_owners.h): the element receivers' plans are made first, all from
   // the state before the pass, by the ranks that hold their links, and sent to every rank.
   constexpr size_t kBatch = 1024;
