@@ -254,10 +254,6 @@ class Solver {
   // them (a child starts from its parent's values), not what other pairs decided, so nodes and links
   // come out the same whatever the thread count.
   void refine_pairs(std::vector<PairTask> tasks);
-  // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
-  // and the lists they filter (a deque: a list stays where it is while others are added).
-  std::vector<PairTask> queued_pairs_;
-  std::deque<std::vector<uint32_t>> queued_lists_;
 
   // The polygons that can block between nodes i and j (shaft.h); with volumetric visibility, volume
   // clusters the multi-resolution rule accepts for this link stand whole (tagged). A shaft where the
@@ -434,6 +430,10 @@ class Solver {
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
   std::vector<Pending> pending_;
+  // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
+  // and the lists they filter (a deque: a list stays where it is while others are added).
+  std::vector<PairTask> queued_pairs_;
+  std::deque<std::vector<uint32_t>> queued_lists_;
   // Jacobi sweeps, no closure balance, no transmission: the steps that read links run as a divided
   // solve runs them, whatever the rank count, so that its result is the same (link_owners.h).
   bool divisible_ = false;
