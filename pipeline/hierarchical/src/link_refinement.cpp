@@ -119,8 +119,9 @@ void Solver::replace_link(uint32_t i, const Link& l, bool split_receiver, std::v
   --stats_.links;
   // Ray-free: no candidate, filtered as a parent's empty list; else the pair's own, searched above.
   static const std::vector<uint32_t> kNone;
-  PairTask t{i, l.source, ray_free(l) ? &kNone : nullptr, true};
-  if (!ray_free(l)) {
+  const bool none = ray_free(l);
+  PairTask t{i, l.source, none ? &kNone : nullptr, true};
+  if (!none) {
     t.has_own = true;
     t.own = std::move(candidates);
   }

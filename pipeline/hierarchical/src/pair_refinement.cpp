@@ -83,18 +83,30 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   // Candidates between the two: the parent's list filtered by this pair's shaft.
   const Shaft shaft(h_[i].bounds, h_[j].bounds);
   const uint32_t ex_i = h_[i].cluster ? UINT32_MAX : h_[i].polygon, ex_j = h_[j].cluster ? UINT32_MAX : h_[j].polygon;
-  // With compact lists from a parent, the list itself is built only for a pair that splits again;
-  // a pair that becomes a link needs only its count, up to the thresholds below.
+  // With compact lists from a parent, the list itself is built only for a pair that splits again, and
+  // each count is a pass over the parent's list: a pair is counted only as far as its decision needs
+  // (worth_splitting asks only whether something can block, and asks nothing more of a pair that splits
+  // either way, since an occluded pair is worth splitting wherever an unoccluded one is); a link needs
+  // its count up to the thresholds below.
   const bool lazy = compact() && t.parent;
+  const bool si = splittable(i), sj = splittable(j);
   std::vector<uint32_t> candidates;
-  if (!lazy) candidates = t.has_own ? std::move(t.own) : occluders(i, j, shaft, ex_i, ex_j, t.parent);
-  const size_t listed = lazy ? count_compact_candidates(h_.tree(), shaft, *t.parent, ex_i, ex_j, kManyBlockers + 1)
-                        : compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j)
-                                    : candidates.size();
-  const bool split = t.force || must_split || worth_splitting(i, j, listed > 0);
+  size_t listed = 0;
+  bool split = false;
+  auto count = [&](size_t limit) { return count_compact_candidates(h_.tree(), shaft, *t.parent, ex_i, ex_j, limit); };
+  if (!lazy) {
+    candidates = t.has_own ? std::move(t.own) : occluders(i, j, shaft, ex_i, ex_j, t.parent);
+    listed = compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j) : candidates.size();
+    split = t.force || must_split || worth_splitting(i, j, listed > 0);
+  } else if ((si || sj) && (t.force || must_split || worth_splitting(i, j, false))) {
+    split = true;
+  } else if ((si || sj) && worth_splitting(i, j, true) && count(1) > 0) {
+    split = true;
+  } else {
+    listed = count(kManyBlockers + 1);
+  }
 
   if (split) {
-    const bool si = splittable(i), sj = splittable(j);
     if (si || sj) {
       bool split_receiver = si && (!sj || !clearly_greater(h_[j].radius, h_[i].radius));
       if (must_split && si && sj && h_[i].cluster != h_[j].cluster) split_receiver = h_[i].cluster;
