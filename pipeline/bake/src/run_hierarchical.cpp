@@ -253,6 +253,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
                       {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast},
+              {"probed_pairs", stats.probed_pairs}, {"probe_hidden_pairs", stats.probe_hidden}, {"probe_rays", stats.probe_rays},
               {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
               {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},
               {"monte_carlo_links", stats.monte_carlo_links},

@@ -192,6 +192,7 @@ void Solver::record(IterationStats& is, const std::function<void(const Iteration
 thread_local std::vector<double> Solver::kernel_scratch_;
 thread_local std::vector<Solver::ClusterSample> Solver::cluster_scratch_;
 thread_local std::vector<uint8_t> Solver::blocked_scratch_;
+thread_local std::vector<RayScene::Segment> Solver::probe_scratch_;
 thread_local std::vector<uint8_t> Solver::quadrant_scratch_;
 
 }  // namespace hierarchical_detail

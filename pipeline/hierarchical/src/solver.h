@@ -244,7 +244,12 @@ class Solver {
     bool split_receiver = false, need_rays = false, volume = false;
     int32_t samples = 0;
     std::vector<uint32_t> candidates;  // kSplitEnd: the pair's list, which its children's shafts filter
+    uint32_t probe_rays = 0;           // cast by probe
+    bool probe_hidden = false;
   };
+  // s_.rays rays between random points of i and j that face each other (a stream of its own, not the
+  // link's): hidden when every one is blocked (none facing: not hidden). Returns the rays cast.
+  uint32_t probe(uint32_t i, uint32_t j, bool& hidden) const;
   // Decides a pair without changing anything (thread-safe; t.own is taken).
   PairOutcome decide_pair(PairTask& t) const;
   // Refines pairs level by level (Hanrahan, Salzman & Aupperle 1991, breadth first): each level's
@@ -443,6 +448,7 @@ class Solver {
   static thread_local std::vector<ClusterSample> cluster_scratch_;
   std::vector<uint8_t> two_sided_;  // by node: a cluster holding a transmitting polygon or a twin
   static thread_local std::vector<uint8_t> blocked_scratch_;
+  static thread_local std::vector<RayScene::Segment> probe_scratch_;
   static thread_local std::vector<uint8_t> quadrant_scratch_;
 };
 

@@ -52,6 +52,11 @@ struct HierarchicalSettings {
   double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps, × its display weight
   int max_iterations = 64;    // refine + solve rounds
   int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
+  // A pair about to be split whose parent pair's candidate list holds more entries than this is first
+  // probed with `rays` rays, and linked instead where all are blocked (pair_refinement.cpp). 4,096
+  // probes pairs rooms apart: the 150-room level's 839 pairs (512 hidden), its solve 176 → 124 s at the
+  // same error (docs/performance.md).
+  size_t probe_entries = 4096;
   bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
   bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
   bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)
@@ -111,6 +116,7 @@ struct HierarchicalStats {
   uint64_t refinements = 0;            // links split
   uint64_t receiver_splits = 0;        // receivers whose links went down to their children (variation)
   uint64_t recast = 0;                 // wholly hidden links cast again with more rays
+  uint64_t probed_pairs = 0, probe_hidden = 0, probe_rays = 0;  // pairs probed before a split (Solver::probe)
   bool converged = false;
   std::string oracle;                  // "importance" or "view-independent"
   double white = 0;                    // the display white the tolerances were relative to (W/m²)
