@@ -51,7 +51,11 @@ struct HierarchicalSettings {
                               // candidate occluders, ×4 with more than 64
   double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps, × its display weight
   int max_iterations = 64;    // refine + solve rounds
-  int sweeps = 4;             // gather/push-pull sweeps per round (more in the last rounds)
+  // Gather/push-pull sweeps per round but the last (which sweeps to the tolerance). They only steer the
+  // next refinement: 2 instead of 4 took the 150-room level from 180.5 to 164.4 s, with every scene of
+  // docs/accuracy.md's table within its noise (visited rooms 3.15 → 3.10%, office-floor 8 rooms 2.03 →
+  // 2.08%, the hospital 5.07 → 4.79%).
+  int sweeps = 2;
   // A pair about to be split whose parent pair's candidate list holds more entries than this is first
   // probed with `rays` rays, and linked instead where all are blocked (pair_refinement.cpp). 4,096
   // probes pairs rooms apart: the 150-room level's 839 pairs (512 hidden), its solve 176 → 124 s at the
