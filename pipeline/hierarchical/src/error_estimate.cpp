@@ -235,7 +235,7 @@ bool Solver::worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* 
   if (!occluded && !clearly_greater(spread, s_.error * sent_b)) return false;  // a uniform source in full view: exact
   // What the link may carry: the estimate from the centres, or its own form factor once evaluated; a
   // link whose every ray was blocked, only what n rays could have missed (through a wall: little).
-  const double F = !link ? transfer_estimate(ri, sj) : link->F > 0 ? std::max(transfer_estimate(ri, sj), link->F) : link->sigma;
+  const double F = !link ? transfer_estimate(ri, sj) : link->F > 0 ? std::max(transfer_estimate(ri, sj), double(link->F)) : link->sigma;
   const double carried = luminance(ri.rho) * sent_b * F * ri.area * display_weight(i);
   return clearly_greater(carried, s_.error * white_ * quantum_area_);
 }

@@ -254,7 +254,7 @@ void normalize_shares(const Hierarchy& h, uint32_t receiver, Link& link) {
 }
 
 // docs/performance.md gives the memory per link.
-static_assert(sizeof(Link) == 48, "a link's size changed: update docs/performance.md");
+static_assert(sizeof(Link) == 44, "a link's size changed: update docs/performance.md");
 
 std::array<uint16_t, 4> seen_weights(const double* visible_kernel, const double* area_share, uint32_t count, double within) {
   std::array<uint16_t, 4> out = {0, 0, 0, 0};

@@ -88,7 +88,7 @@ void Solver::store_links(const std::vector<Pending>& list) {
     if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
   for (const Pending& p : list) {
     if (!kept(p)) continue;
-    Link l{p.F, p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
+    Link l{float(p.F), p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
            uint16_t(std::min(p.samples, 65535))};
     l.seen = p.seen;
     normalize_shares(h_, p.receiver, l);

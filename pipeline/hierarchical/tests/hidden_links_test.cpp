@@ -61,7 +61,7 @@ TEST(Hierarchical, ALinkThroughAWallIsSettledNotRefined) {
       for (const Link& l : n.links) {
         const HNode& src = h[l.source];
         const bool src_dark = src.cluster ? src.bounds.lo.x > 4.05 : dark(src);
-        if (src_dark == dark(n) || src.bounds.hi.x > 4.05 && src.bounds.lo.x < 4.05) continue;
+        if (src_dark == dark(n) || (src.bounds.hi.x > 4.05 && src.bounds.lo.x < 4.05)) continue;
         ++across;
         across_below += n.depth > 0;
         EXPECT_EQ(l.F, 0.0);
