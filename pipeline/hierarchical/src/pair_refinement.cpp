@@ -107,9 +107,9 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   }
 
   // A pair whose parent's list is long (rooms apart: the 150-room level's third round filtered 3.9 G
-  // entries for pairs 30 m apart or more, half its solve) is probed with a few rays before its list is
-  // filtered: where every one is blocked it is linked, with the rays of a recast (hidden, it is settled
-  // at once), not split into thousands of pairs whose rays each find the same wall.
+  // entries for pairs 30 m apart or more, half that round's CPU) is probed with a few rays before its
+  // list is filtered: where every one is blocked it is linked, with the rays of a recast (hidden, it is
+  // settled at once), not split into thousands of pairs whose rays each find the same wall.
   if (split && lazy && !t.force && !must_split && t.parent->size() > s_.probe_entries) {
     out.probe_rays = probe(i, j, out.probe_hidden);
     if (out.probe_hidden) {
