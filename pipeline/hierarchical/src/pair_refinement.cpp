@@ -111,7 +111,7 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   // list is filtered: where every one is blocked it is linked, with the rays of a recast (hidden, it is
   // settled at once), not split into thousands of pairs whose rays each find the same wall.
   if (split && lazy && !t.force && !must_split && t.parent->size() > s_.probe_entries) {
-    out.probe_rays = probe(i, j, out.probe_hidden);
+    probe(i, j, out);
     if (out.probe_hidden) {
       out.kind = PairKind::kLink;
       out.samples = kHiddenRecast * s_.rays;
@@ -147,7 +147,7 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   return out;
 }
 
-uint32_t Solver::probe(uint32_t i, uint32_t j, bool& hidden) const {
+void Solver::probe(uint32_t i, uint32_t j, PairOutcome& out) const {
   const HNode& ri = h_[i];
   const HNode& sj = h_[j];
   Rng rng(j, i);  // not the link's own stream (evaluate: receiver, source)
@@ -165,13 +165,12 @@ uint32_t Solver::probe(uint32_t i, uint32_t j, bool& hidden) const {
     if (dot(ni, d) <= 0 || dot(nj, d) >= 0) continue;
     segments.push_back({pi + ni * offset, pj + nj * offset});
   }
-  hidden = false;
-  if (segments.empty()) return 0;
+  if (segments.empty()) return;  // nothing faces: not hidden
   std::vector<uint8_t>& blocked = blocked_scratch_;
   blocked.assign(segments.size(), 0);
   rays_.occluded(segments.data(), segments.size(), blocked.data());
-  hidden = std::all_of(blocked.begin(), blocked.end(), [](uint8_t b) { return b != 0; });
-  return uint32_t(segments.size());
+  out.probe_rays = uint32_t(segments.size());
+  out.probe_hidden = std::all_of(blocked.begin(), blocked.end(), [](uint8_t b) { return b != 0; });
 }
 
 void Solver::refine_pairs(std::vector<PairTask> tasks) {

@@ -244,12 +244,12 @@ class Solver {
     bool split_receiver = false, need_rays = false, volume = false;
     int32_t samples = 0;
     std::vector<uint32_t> candidates;  // kSplitEnd: the pair's list, which its children's shafts filter
-    uint32_t probe_rays = 0;           // cast by probe
-    bool probe_hidden = false;
+    uint32_t probe_rays = 0;           // cast by probe (0: not probed, or nothing faced)
+    bool probe_hidden = false;         // every probe ray blocked
   };
   // s_.rays rays between random points of i and j that face each other (a stream of its own, not the
-  // link's): hidden when every one is blocked (none facing: not hidden). Returns the rays cast.
-  uint32_t probe(uint32_t i, uint32_t j, bool& hidden) const;
+  // link's), into out's probe_rays and probe_hidden.
+  void probe(uint32_t i, uint32_t j, PairOutcome& out) const;
   // Decides a pair without changing anything (thread-safe; t.own is taken).
   PairOutcome decide_pair(PairTask& t) const;
   // Refines pairs level by level (Hanrahan, Salzman & Aupperle 1991, breadth first): each level's

@@ -52,7 +52,7 @@ struct HierarchicalSettings {
   double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps, × its display weight
   int max_iterations = 64;    // refine + solve rounds
   // Gather/push-pull sweeps per round but the last (which sweeps to the tolerance). They only steer the
-  // next refinement: 2 instead of 4 took the 150-room level from 180.5 to 164.4 s, with every scene of
+  // next refinement: 2 instead of 4 took the 150-room level from 180.5 to 162.9 s, with every scene of
   // docs/accuracy.md's table within its noise (visited rooms 3.15 → 3.10%, office-floor 8 rooms 2.03 →
   // 2.08%, the hospital 5.07 → 4.79%).
   int sweeps = 2;
@@ -120,7 +120,7 @@ struct HierarchicalStats {
   uint64_t refinements = 0;            // links split
   uint64_t receiver_splits = 0;        // receivers whose links went down to their children (variation)
   uint64_t recast = 0;                 // wholly hidden links cast again with more rays
-  uint64_t probed_pairs = 0, probe_hidden = 0, probe_rays = 0;  // pairs probed before a split (Solver::probe)
+  uint64_t probed_pairs = 0, probe_hidden = 0, probe_rays = 0;  // pairs probed before a split, with rays cast (Solver::probe)
   bool converged = false;
   std::string oracle;                  // "importance" or "view-independent"
   double white = 0;                    // the display white the tolerances were relative to (W/m²)
