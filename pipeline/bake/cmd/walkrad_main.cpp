@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
                        "Draco: largest _RADIOSITY error, as a fraction of the radiosity shown as white")
       ->check(CLI::Range(1e-9, 1.0))->capture_default_str();
   bake_cmd->add_option("--threads", bs.threads, "worker threads (default: all cores)")->check(CLI::Range(0, 1024));
-  bake_cmd->add_option("--tolerance", bs.tolerance, "solver stop: largest relative update (hierarchical: at least 1e-6 and --error / 1000, each leaf's weighed by what the walkthrough sees of it)")->capture_default_str();
+  bake_cmd->add_option("--tolerance", bs.tolerance, "solver stop: largest relative update (hierarchical: at least 1e-6 and --error / 200, each leaf's weighed by what the walkthrough sees of it)")->capture_default_str();
   bake_cmd->add_option("--max-seconds", bs.caps.max_seconds,
                        "stop with exit code 6, writing nothing, when the bake runs longer (checked between phases and solve rounds)")
       ->check(CLI::NonNegativeNumber);
