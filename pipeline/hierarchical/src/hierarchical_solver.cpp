@@ -127,6 +127,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const bool correct = s_.accelerate && s_.indirect && !s_.twins;
     int interval = 0, wait = 0;  // sweeps between corrections, and before the next one
     const uint64_t sweeps_from = ranks_bytes_exchanged();
+    if (s_.gauss_seidel) plan_gather_blocks();  // the links stay as they are through the round's sweeps
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       ++is.sweeps;
       // Importance steers the refinement, and the last round's sweeps past a round's own refine nothing

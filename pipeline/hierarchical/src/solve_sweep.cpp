@@ -27,6 +27,7 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance) {
       for (size_t i = r.begin(); i != r.end(); ++i)
         if (here(uint32_t(i))) gather(nodes[i]);
     });
+  next_block_ = 0;
   if (divided_) share_gathered();
   change_ = 0;
   is.emitted = is.absorbed = is.residual = Vec3{};
@@ -76,21 +77,78 @@ void Solver::gather(HNode& n) {
   n.Fsum = f;
 }
 
-void Solver::gather_subtree(uint32_t i) {
-  // A polygon's elements gather from other polygons only (a plane does not see itself), and each
-  // writes its own H and its children's Hp: they gather in parallel, each as it would alone.
-  std::vector<uint32_t>& subtree = subtree_scratch_;
-  subtree.assign(1, i);
-  for (size_t k = 0; k < subtree.size(); ++k)
-    for (uint32_t c = 0; c < h_[subtree[k]].child_count; ++c) subtree.push_back(h_.child(h_[subtree[k]], c));
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, subtree.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) gather(h_[subtree[k]]);
+void Solver::plan_gather_blocks() {
+  // The nodes that gather in the walk's order (push_pull: a node, then its children in turn): each
+  // cluster, and each polygon's whole element tree at once (its elements gather from other polygons
+  // only). A polygon's nodes change when the walk pushes it; a cluster's value (Bt, facing_bt_, its
+  // parts') when the walk leaves it, after every item below it.
+  std::vector<uint32_t> items, first(cube_.size()), last(cube_.size());
+  std::vector<uint32_t> polygon_item(h_.scene().polygons.size(), UINT32_MAX);
+  std::vector<uint32_t> stack{h_.root()};
+  while (!stack.empty()) {
+    const uint32_t i = stack.back();
+    stack.pop_back();
+    if (i == UINT32_MAX) {  // a cluster's subtree ends: its last item
+      const uint32_t c = stack.back();
+      stack.pop_back();
+      last[cube_slot_[c]] = uint32_t(items.size() - 1);
+      continue;
+    }
+    const HNode& n = h_[i];
+    if (!n.cluster) {
+      polygon_item[n.polygon] = uint32_t(items.size());
+      items.push_back(i);
+      continue;
+    }
+    first[cube_slot_[i]] = uint32_t(items.size());
+    items.push_back(i);
+    stack.push_back(i);
+    stack.push_back(UINT32_MAX);
+    for (uint32_t c = n.child_count; c-- > 0;) stack.push_back(h_.child(n, c));
+  }
+  // An item joins the open block when none of its links reads a node the walk changes between the
+  // block's start and the item's turn: gathered at the block's start, it reads what it would read at
+  // its turn, and every sweep gives the same bytes as one node at a time.
+  block_nodes_.clear();
+  block_start_.clear();
+  block_first_.clear();
+  uint32_t open = 0;  // the open block's first item
+  for (uint32_t t = 0; t < items.size(); ++t) {
+    const size_t from = block_nodes_.size();
+    block_nodes_.push_back(items[t]);
+    if (!h_[items[t]].cluster)
+      for (size_t k = from; k < block_nodes_.size(); ++k)
+        for (uint32_t c = 0; c < h_[block_nodes_[k]].child_count; ++c) block_nodes_.push_back(h_.child(h_[block_nodes_[k]], c));
+    bool reads_block = false;
+    for (size_t k = from; k < block_nodes_.size() && !reads_block && t > open && s_.gather_blocks; ++k)
+      for (const Link& l : h_[block_nodes_[k]].links) {
+        const HNode& source = h_[l.source];
+        const uint32_t lo = source.cluster ? first[cube_slot_[l.source]] : polygon_item[source.polygon];
+        const uint32_t hi = source.cluster ? last[cube_slot_[l.source]] : lo;
+        if (lo < t && hi >= open) {
+          reads_block = true;
+          break;
+        }
+      }
+    if (t == 0 || reads_block || !s_.gather_blocks) {
+      open = t;
+      block_start_.push_back(from);
+      block_first_.push_back(items[t]);
+    }
+  }
+  block_start_.push_back(block_nodes_.size());
+  next_block_ = 0;
+}
+
+void Solver::gather_block(size_t b) {
+  // Each node writes its own H and its children's Hp and reads only what push_pull writes.
+  tbb::parallel_for(tbb::blocked_range<size_t>(block_start_[b], block_start_[b + 1], 16), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) gather(h_[block_nodes_[k]]);
   });
 }
 
 Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {
-  if (s_.gauss_seidel && h_[i].cluster) gather(h_[i]);
-  if (s_.gauss_seidel && !h_[i].cluster && h_[i].depth == 0) gather_subtree(i);
+  if (s_.gauss_seidel && next_block_ < block_first_.size() && block_first_[next_block_] == i) gather_block(next_block_++);
   HNode& n = h_[i];
   if (n.child_count == 0) {
     Vec3 H = n.H + down;

@@ -398,13 +398,20 @@ class Solver {
   // and clamping only one side would lose power.
   void gather(HNode& n);
 
-  void gather_subtree(uint32_t i);
+  // Gauss-Seidel gathers in blocks (plan_gather_blocks, made once a round): runs of the clusters and
+  // polygons that gather, in the walk's order, none of whose links reads what the walk changes within
+  // the run. A block's nodes gather in parallel at its start; any thread count gives the same bytes.
+  void plan_gather_blocks();
+  void gather_block(size_t b);
+  std::vector<uint32_t> block_nodes_;  // every node that gathers, block by block
+  std::vector<size_t> block_start_;    // block b's nodes: [block_start_[b], block_start_[b + 1])
+  std::vector<uint32_t> block_first_;  // the node at which the walk reaches block b
+  size_t next_block_ = 0;
   // Each cluster's Bt by the way its surfaces face (cluster_radiosity.h), set at each sweep's start.
   std::vector<std::array<Vec3, 6>> facing_bt_;
   // What link l of receiver n takes from its source this sweep: a cluster source's radiosity towards n
   // (its parts' where the link saw them unevenly: Link::seen), an element's Bt.
   Vec3 sent_to(const HNode& n, const Link& l) const;
-  std::vector<uint32_t> subtree_scratch_;  // gather_subtree's nodes
 
   // down, down_sum: what the element ancestors' links push here; cube: what the cluster ancestors'
   // links hold by direction (taken by the first element below them).

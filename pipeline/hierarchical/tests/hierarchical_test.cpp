@@ -1,6 +1,7 @@
 // Hierarchical radiosity against exact physics (the furnace), against the classic method on the
 // Cornell box, and its own invariants: push-pull conserves power at every level, and the result does
 // not depend on the thread count.
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -98,6 +99,31 @@ TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
   // sweeps reached, so the two orders refine a little differently (measured 0.27% apart).
   EXPECT_NEAR(mean[1], mean[0], 5e-3 * mean[0]);
   EXPECT_LT(sweeps[1], sweeps[0]);
+}
+
+// Gauss-Seidel gathers runs of polygons and clusters together when none reads what another's push
+// changes (solve_sweep.cpp): every bit as one at a time. The Cornell box's blocks and their faces
+// light the walls and each other; the lamp room's shade, bulb and table are small polygons in a row.
+TEST(Hierarchical, GaussSeidelBlocksGiveTheSameBitsAsOneAtATime) {
+  for (const std::string& path : {kCornell, std::string(WALKRAD_SOURCE_DIR) + "/examples/lamp-room/lamp-room.gltf"}) {
+    const Scene scene = read_scene(path);
+    const ClusterTree tree = build_cluster_tree(scene);
+    const RayScene rays(scene);
+    std::vector<Vec3> B[2];
+    for (int blocks = 0; blocks < 2; ++blocks) {
+      Hierarchy h(scene, tree);
+      HierarchicalSettings s;
+      s.gather_blocks = blocks == 1;
+      HierarchicalStats stats;
+      solve_hierarchical(h, rays, s, stats);
+      for (const HNode& n : h.nodes()) B[blocks].push_back(n.B);
+    }
+    ASSERT_EQ(B[0].size(), B[1].size()) << path;
+    size_t differ = 0;
+    for (size_t k = 0; k < B[0].size(); ++k)
+      differ += std::memcmp(&B[0][k], &B[1][k], sizeof(Vec3)) != 0;
+    EXPECT_EQ(differ, 0u) << path;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Reflectances, HierarchicalFurnace, ::testing::Values(0.5, 0.9, 0.99));
