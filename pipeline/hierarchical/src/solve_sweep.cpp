@@ -111,33 +111,30 @@ void Solver::plan_gather_blocks() {
   // its turn, and every sweep gives the same bytes as one node at a time.
   block_nodes_.clear();
   block_start_.clear();
-  block_first_.clear();
   uint32_t open = 0;  // the open block's first item
+  // Whether a link of block_nodes_[from...] reads a polygon pushed, or a cluster left, since item open.
+  auto reads_open_block = [&](size_t from, uint32_t t) {
+    for (size_t k = from; k < block_nodes_.size(); ++k)
+      for (const Link& l : h_[block_nodes_[k]].links) {
+        const HNode& source = h_[l.source];
+        const uint32_t lo = source.cluster ? first[cube_slot_[l.source]] : polygon_item[source.polygon];
+        const uint32_t hi = source.cluster ? last[cube_slot_[l.source]] : lo;
+        if (lo < t && hi >= open) return true;
+      }
+    return false;
+  };
   for (uint32_t t = 0; t < items.size(); ++t) {
     const size_t from = block_nodes_.size();
     block_nodes_.push_back(items[t]);
     if (!h_[items[t]].cluster)
       for (size_t k = from; k < block_nodes_.size(); ++k)
         for (uint32_t c = 0; c < h_[block_nodes_[k]].child_count; ++c) block_nodes_.push_back(h_.child(h_[block_nodes_[k]], c));
-    bool reads_block = false;
-    for (size_t k = from; k < block_nodes_.size() && !reads_block && t > open && s_.gather_blocks; ++k)
-      for (const Link& l : h_[block_nodes_[k]].links) {
-        const HNode& source = h_[l.source];
-        const uint32_t lo = source.cluster ? first[cube_slot_[l.source]] : polygon_item[source.polygon];
-        const uint32_t hi = source.cluster ? last[cube_slot_[l.source]] : lo;
-        if (lo < t && hi >= open) {
-          reads_block = true;
-          break;
-        }
-      }
-    if (t == 0 || reads_block || !s_.gather_blocks) {
+    if (t == 0 || !s_.gather_blocks || reads_open_block(from, t)) {
       open = t;
       block_start_.push_back(from);
-      block_first_.push_back(items[t]);
     }
   }
   block_start_.push_back(block_nodes_.size());
-  next_block_ = 0;
 }
 
 void Solver::gather_block(size_t b) {
@@ -148,7 +145,9 @@ void Solver::gather_block(size_t b) {
 }
 
 Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {
-  if (s_.gauss_seidel && next_block_ < block_first_.size() && block_first_[next_block_] == i) gather_block(next_block_++);
+  // The walk reaches a block at its first node (plan_gather_blocks).
+  if (s_.gauss_seidel && next_block_ + 1 < block_start_.size() && block_nodes_[block_start_[next_block_]] == i)
+    gather_block(next_block_++);
   HNode& n = h_[i];
   if (n.child_count == 0) {
     Vec3 H = n.H + down;

@@ -404,8 +404,8 @@ class Solver {
   void plan_gather_blocks();
   void gather_block(size_t b);
   std::vector<uint32_t> block_nodes_;  // every node that gathers, block by block
-  std::vector<size_t> block_start_;    // block b's nodes: [block_start_[b], block_start_[b + 1])
-  std::vector<uint32_t> block_first_;  // the node at which the walk reaches block b
+  // Block b's nodes: [block_start_[b], block_start_[b + 1]); the walk reaches the block at its first.
+  std::vector<size_t> block_start_;
   size_t next_block_ = 0;
   // Each cluster's Bt by the way its surfaces face (cluster_radiosity.h), set at each sweep's start.
   std::vector<std::array<Vec3, 6>> facing_bt_;

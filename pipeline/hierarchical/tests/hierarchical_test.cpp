@@ -102,28 +102,26 @@ TEST(Hierarchical, GaussSeidelConvergesInFewerSweepsThanJacobi) {
 }
 
 // Gauss-Seidel gathers runs of polygons and clusters together when none reads what another's push
-// changes (solve_sweep.cpp): every bit as one at a time. The Cornell box's blocks and their faces
-// light the walls and each other; the lamp room's shade, bulb and table are small polygons in a row.
+// changes (solve_sweep.cpp): every bit as one at a time. On the Cornell box a rule that let every run
+// grow gave 3,978 nodes against 3,630 (the refinement reads the sweeps' radiosity); the lamp room
+// showed no difference with it, so it is not the scene here.
 TEST(Hierarchical, GaussSeidelBlocksGiveTheSameBitsAsOneAtATime) {
-  for (const std::string& path : {kCornell, std::string(WALKRAD_SOURCE_DIR) + "/examples/lamp-room/lamp-room.gltf"}) {
-    const Scene scene = read_scene(path);
-    const ClusterTree tree = build_cluster_tree(scene);
-    const RayScene rays(scene);
-    std::vector<Vec3> B[2];
-    for (int blocks = 0; blocks < 2; ++blocks) {
-      Hierarchy h(scene, tree);
-      HierarchicalSettings s;
-      s.gather_blocks = blocks == 1;
-      HierarchicalStats stats;
-      solve_hierarchical(h, rays, s, stats);
-      for (const HNode& n : h.nodes()) B[blocks].push_back(n.B);
-    }
-    ASSERT_EQ(B[0].size(), B[1].size()) << path;
-    size_t differ = 0;
-    for (size_t k = 0; k < B[0].size(); ++k)
-      differ += std::memcmp(&B[0][k], &B[1][k], sizeof(Vec3)) != 0;
-    EXPECT_EQ(differ, 0u) << path;
+  const Scene scene = read_scene(kCornell);
+  const ClusterTree tree = build_cluster_tree(scene);
+  const RayScene rays(scene);
+  std::vector<Vec3> B[2];
+  for (int blocks = 0; blocks < 2; ++blocks) {
+    Hierarchy h(scene, tree);
+    HierarchicalSettings s;
+    s.gather_blocks = blocks == 1;
+    HierarchicalStats stats;
+    solve_hierarchical(h, rays, s, stats);
+    for (const HNode& n : h.nodes()) B[blocks].push_back(n.B);
   }
+  ASSERT_EQ(B[0].size(), B[1].size());
+  size_t differ = 0;
+  for (size_t k = 0; k < B[0].size(); ++k) differ += std::memcmp(&B[0][k], &B[1][k], sizeof(Vec3)) != 0;
+  EXPECT_EQ(differ, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Reflectances, HierarchicalFurnace, ::testing::Values(0.5, 0.9, 0.99));

@@ -62,8 +62,9 @@ struct HierarchicalSettings {
   // same error (docs/performance.md).
   size_t probe_entries = 4096;
   bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
-  // Gauss-Seidel: runs of polygons and clusters none of which reads another's gather together, in
-  // parallel (solve_sweep.cpp); the same bytes as one at a time (false: the tests' comparison).
+  // Gauss-Seidel: runs of polygons and clusters none of which reads what another's push changes
+  // gather together, in parallel (solve_sweep.cpp): the same bits as one at a time, which false keeps
+  // for the tests' comparison.
   bool gather_blocks = true;
   bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
   bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)
