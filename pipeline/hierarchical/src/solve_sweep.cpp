@@ -155,16 +155,21 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     bool clamped = false;
     H = leaf_irradiance(n, H, row_sum, &clamped);
     if (clamped) ++is.clamped_leaves;
-    h_[i].Hl = H;
     const Vec3 tau = transmittance(n);
     const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
-    const Vec3 b = n.emission + mul(n.rho, H + n.D) + through;
+    const Vec3 gathered = n.emission + mul(n.rho, H + n.D) + through;
+    if (relax_ != 1.0) {  // over-relaxed: past the gathered value, never below none
+      const Vec3 r = n.Hl + (H - n.Hl) * relax_;
+      H = Vec3(std::max(r.x, 0.0), std::max(r.y, 0.0), std::max(r.z, 0.0));
+    }
+    h_[i].Hl = H;
+    const Vec3 b = relax_ != 1.0 ? n.emission + mul(n.rho, H + n.D) + through : gathered;
     // The change, relative to the leaf's radiosity and weighed by what the walkthrough sees of it
     // (display_weight: 1 without importance), as its refinement tolerance is: a room no viewpoint sees
     // nor lights through others need not converge further than what it sends into the seen ones.
     const double scale = std::max(max_component(b), change_floor_);
     if (scale > 0)
-      change_ = std::max(change_, display_weight(i) * max_component(Vec3(std::fabs(b.x - n.B.x), std::fabs(b.y - n.B.y), std::fabs(b.z - n.B.z))) / scale);
+      change_ = std::max(change_, display_weight(i) * max_component(Vec3(std::fabs(gathered.x - n.B.x), std::fabs(gathered.y - n.B.y), std::fabs(gathered.z - n.B.z))) / scale);
     // The residual of the leaf's equation before this update: |E + ρH − B| A.
     const Vec3 r = b - n.B;
     is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;

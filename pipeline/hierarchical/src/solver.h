@@ -174,6 +174,10 @@ class Solver {
   // An aggregation correction that scales the reflected light by less than this is idle (run()).
   static constexpr double kIdleCorrection = 1e-3;
   static constexpr int kMaxCorrectionInterval = 8;
+  // The last round over-relaxes (HierarchicalSettings::relaxation) once two plain sweeps past its
+  // first each shrank the change by less than this: slow local modes (office-floor 0.40 and 0.56 at 8
+  // rooms, 0.59 and 0.58 at 32 rooms), not fast ones (a 1 m box lit by one face: 0.10–0.24 but once).
+  static constexpr double kSlowSweep = 0.3;
 
   // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
   static constexpr double kClusterCosine = 0.25;
@@ -427,6 +431,7 @@ class Solver {
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
   double min_area_ = 0, change_ = 0, change_floor_ = 0;
+  double relax_ = 1.0;  // over-relaxation of the leaves' gathered irradiance this sweep (push_pull)
   double white_ = 0, seen_density_ = 0;
   uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
   bool direct_weights_ = false;  // display weights from the direct importance R (the first refinement)
