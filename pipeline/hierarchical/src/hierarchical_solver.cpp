@@ -130,8 +130,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     if (s_.gauss_seidel) plan_gather_blocks();  // the links stay as they are through the round's sweeps
     // Over-relaxed in the last round only, once its first sweeps have taken up the new links (from a
     // round's first sweep the direct light would be overshot too), and not for Jacobi, whose modes of
-    // eigenvalue −ρF it would drive apart. It starts after two plain sweeps past those that each
-    // shrank the change by less than kSlowSweep: where the modes left are fast, ω > 1 makes them
+    // eigenvalue −ρF it would drive apart. It starts after two plain sweeps past those, each of which
+    // left at least kSlowSweep of the change before it: where the modes left are fast, ω > 1 makes them
     // oscillate with 1 − ω instead (a 2 m box lit by one face: 8 sweeps plain, 18 over-relaxed from
     // the third), and one sweep's ratio can be the correction's (a 1 m one: 0.10, then 1.10, then
     // 0.17). Should the change rise two sweeps running, plain again.

@@ -158,7 +158,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     const Vec3 tau = transmittance(n);
     const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
     const Vec3 gathered = n.emission + mul(n.rho, H + n.D) + through;
-    if (relax_ != 1.0) {  // over-relaxed: past the gathered value, never below none
+    if (relax_ != 1.0) {  // over-relaxed: past the gathered value, never below 0
       const Vec3 r = n.Hl + (H - n.Hl) * relax_;
       H = Vec3(std::max(r.x, 0.0), std::max(r.y, 0.0), std::max(r.z, 0.0));
     }

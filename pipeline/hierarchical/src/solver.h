@@ -175,7 +175,7 @@ class Solver {
   static constexpr double kIdleCorrection = 1e-3;
   static constexpr int kMaxCorrectionInterval = 8;
   // The last round over-relaxes (HierarchicalSettings::relaxation) once two plain sweeps past its
-  // first each shrank the change by less than this: slow local modes (office-floor 0.40 and 0.56 at 8
+  // first each left at least this share of the change before it: slow local modes (office-floor 0.40 and 0.56 at 8
   // rooms, 0.59 and 0.58 at 32 rooms), not fast ones (a 1 m box lit by one face: 0.10–0.24 but once).
   static constexpr double kSlowSweep = 0.3;
 

@@ -66,10 +66,11 @@ struct HierarchicalSettings {
   // gather together, in parallel (solve_sweep.cpp): the same bits as one at a time, which false keeps
   // for the tests' comparison.
   bool gather_blocks = true;
-  // The last round's Gauss-Seidel sweeps past its first `sweeps` over-relax each leaf's gathered
-  // irradiance, H ← H_before + ω (H_gathered − H_before) (successive over-relaxation; Cohen & Wallace
-  // 1993, ch. 5), the aggregation correction having taken the overall mode: office-floor's last round
-  // 20 → 12 sweeps at 32 rooms and 11 → 8 at 8 rooms for ω 1.4 (docs/performance.md). 1: plain.
+  // The last round's Gauss-Seidel sweeps, once two plain ones past its first `sweeps` show slow modes
+  // (hierarchical_solver.cpp), over-relax each leaf's gathered irradiance, H ← H_before + ω (H_gathered
+  // − H_before) (successive over-relaxation; Cohen & Wallace 1993, ch. 5), the aggregation correction
+  // having taken the overall mode: office-floor's last round 20 → 14 sweeps at 32 rooms, 12 → 10 at
+  // 150 and 11 → 9 at 8 (docs/performance.md). 1: plain.
   double relaxation = 1.4;
   bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
   bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)
