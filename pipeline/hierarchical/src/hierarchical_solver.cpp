@@ -140,10 +140,10 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     double before_change = 0;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       ++is.sweeps;
-      relax_ = relax && slow >= 2 ? s_.relaxation : 1.0;
+      const double omega = relax && slow >= 2 ? s_.relaxation : 1.0;
       // Importance steers the refinement, and the last round's sweeps past a round's own refine nothing
       // more: it is swept as in any round (the estimate reads it as they leave it).
-      is.change = solve_sweep(is, sweep < s_.sweeps);
+      is.change = solve_sweep(is, sweep < s_.sweeps, omega);
       // The correction walks every link, as a sweep does. Once the overall level is right (|c| under
       // kIdleCorrection) what is left are local modes it cannot touch: it skips 1, 2, 4, then 8 sweeps
       // between tries until it moves the level again, and always runs before the sweeps stop.
@@ -158,11 +158,10 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       }
       if (is.change <= s_.tolerance) break;
       if (slow < 2) slow = sweep >= s_.sweeps && is.change >= kSlowSweep * before_change ? slow + 1 : 0;
-      rises = relax_ != 1.0 && is.change > before_change ? rises + 1 : 0;
+      rises = omega != 1.0 && is.change > before_change ? rises + 1 : 0;
       if (rises == 2) relax = false;
       before_change = is.change;
     }
-    relax_ = 1.0;
     converged_before = is.change <= s_.tolerance;
     is.sweep_bytes = ranks_bytes_exchanged() - sweeps_from;
     record(is, progress);

@@ -14,7 +14,8 @@
 
 namespace walkrad::hierarchical_detail {
 
-double Solver::solve_sweep(IterationStats& is, bool with_importance) {
+double Solver::solve_sweep(IterationStats& is, bool with_importance, double relaxation) {
+  relax_ = relaxation;
   std::vector<HNode>& nodes = h_.nodes();
   // What each cluster sends by direction, from the last sweep's radiosity; Gauss-Seidel sweeps then
   // update a cluster's as its surfaces are updated (push_pull), and gather at a cluster as they reach
@@ -157,13 +158,14 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     if (clamped) ++is.clamped_leaves;
     const Vec3 tau = transmittance(n);
     const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
-    const Vec3 gathered = n.emission + mul(n.rho, H + n.D) + through;
+    auto radiosity = [&](const Vec3& irradiance) { return n.emission + mul(n.rho, irradiance + n.D) + through; };
+    const Vec3 gathered = radiosity(H);
     if (relax_ != 1.0) {  // over-relaxed: past the gathered value, never below 0
       const Vec3 r = n.Hl + (H - n.Hl) * relax_;
       H = Vec3(std::max(r.x, 0.0), std::max(r.y, 0.0), std::max(r.z, 0.0));
     }
     h_[i].Hl = H;
-    const Vec3 b = relax_ != 1.0 ? n.emission + mul(n.rho, H + n.D) + through : gathered;
+    const Vec3 b = relax_ != 1.0 ? radiosity(H) : gathered;
     // The change, relative to the leaf's radiosity and weighed by what the walkthrough sees of it
     // (display_weight: 1 without importance), as its refinement tolerance is: a room no viewpoint sees
     // nor lights through others need not converge further than what it sends into the seen ones.

@@ -175,8 +175,9 @@ class Solver {
   static constexpr double kIdleCorrection = 1e-3;
   static constexpr int kMaxCorrectionInterval = 8;
   // The last round over-relaxes (HierarchicalSettings::relaxation) once two plain sweeps past its
-  // first each left at least this share of the change before it: slow local modes (office-floor 0.40 and 0.56 at 8
-  // rooms, 0.59 and 0.58 at 32 rooms), not fast ones (a 1 m box lit by one face: 0.10–0.24 but once).
+  // first each left at least this share of the change before it: slow local modes (office-floor 0.40
+  // and 0.56 at 8 rooms, 0.59 and 0.58 at 32 rooms), not fast ones (a 1 m box lit by one face:
+  // 0.10–0.24 but once).
   static constexpr double kSlowSweep = 0.3;
 
   // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
@@ -392,7 +393,8 @@ class Solver {
   // Gauss-Seidel gathers each input polygon's quadtree just before pushing it down, so it sees what
   // the polygons before it got this sweep (clusters still gather first). Returns the largest relative
   // change of a leaf's radiosity, weighed by its display weight.
-  double solve_sweep(IterationStats& is, bool with_importance = true);
+  // ω: the over-relaxation of the leaves' gathered irradiance (1: a plain Gauss-Seidel or Jacobi sweep).
+  double solve_sweep(IterationStats& is, bool with_importance = true, double relaxation = 1.0);
 
   // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well
   // above 1 receives more than any enclosure could send it: coincident surfaces in the input (two
@@ -431,7 +433,7 @@ class Solver {
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
   double min_area_ = 0, change_ = 0, change_floor_ = 0;
-  double relax_ = 1.0;  // over-relaxation of the leaves' gathered irradiance this sweep (push_pull)
+  double relax_ = 1.0;  // ω of the sweep under way (solve_sweep's argument, read by push_pull)
   double white_ = 0, seen_density_ = 0;
   uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
   bool direct_weights_ = false;  // display weights from the direct importance R (the first refinement)
