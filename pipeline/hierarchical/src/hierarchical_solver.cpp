@@ -127,6 +127,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const bool correct = s_.accelerate && s_.indirect && !s_.twins;
     int interval = 0, wait = 0;  // sweeps between corrections, and before the next one
     const uint64_t sweeps_from = ranks_bytes_exchanged();
+    CorrectionBuffers buffers;  // the round's: given back before the next round's refinement
     if (s_.gauss_seidel) plan_gather_blocks();  // the links stay as they are through the round's sweeps
     // Over-relaxed in the last round only, once its first sweeps have taken up the new links (from a
     // round's first sweep the direct light would be overshot too), and not for Jacobi, whose modes of
@@ -149,7 +150,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       // between tries until it moves the level again, and always runs before the sweeps stop.
       if (correct && (wait == 0 || is.change <= s_.tolerance)) {
         double level = 0;
-        is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &level));
+        is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &level, &buffers));
         ++stats_.corrections;
         interval = level < kIdleCorrection ? std::min(std::max(2 * interval, 1), kMaxCorrectionInterval) : 0;
         wait = interval;

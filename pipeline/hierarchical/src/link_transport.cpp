@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -62,6 +63,7 @@ template <size_t N>
 struct Delivery {
   std::vector<std::array<Vec3, N>> H;
   std::vector<double> row;
+  std::vector<std::array<DirectionalIrradiance, N>> cube;  // by cluster: what it gathered by direction
 };
 
 // What a link with Link::seen takes from its source's parts, as the solve takes it.
@@ -75,14 +77,17 @@ std::array<Vec3, N> seen_value(const Hierarchy& h, const Link& l, const HNode& r
   return out;
 }
 
+// Into d, whose memory is kept (aggregation_correction's callers keep it between calls).
 template <size_t N, class V>
-Delivery<N> delivered(const Hierarchy& h, V value) {
+void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   const std::vector<HNode>& nodes = h.nodes();
   size_t clusters = 0;
   for (size_t k = 0; k < nodes.size(); ++k)
     if (nodes[k].cluster) clusters = k + 1;
-  std::vector<std::array<DirectionalIrradiance, N>> cube(clusters);
-  Delivery<N> d{std::vector<std::array<Vec3, N>>(nodes.size()), std::vector<double>(nodes.size(), 0.0)};
+  std::vector<std::array<DirectionalIrradiance, N>>& cube = d.cube;
+  cube.assign(clusters, std::array<DirectionalIrradiance, N>{});
+  d.H.assign(nodes.size(), std::array<Vec3, N>{});
+  d.row.assign(nodes.size(), 0.0);
   for (size_t k = 0; k < clusters; ++k) {  // the clusters, parents first
     const HNode& n = nodes[k];
     if (!n.cluster) continue;
@@ -152,7 +157,6 @@ Delivery<N> delivered(const Hierarchy& h, V value) {
         d.H[k] = v.H;
         d.row[k] = v.row;
       });
-  return d;
 }
 
 // N values of a node side by side, so that a link reads its source's in one place.
@@ -171,28 +175,40 @@ struct Values {
   }
 };
 
-// T x for N vectors x at once, x given at the leaves (indexed by node): zero except at leaf elements.
+// What transport fills; kept between calls by aggregation_correction's callers.
 template <size_t N>
-std::array<std::vector<Vec3>, N> transport(const Hierarchy& h, const std::array<const std::vector<Vec3>*, N>& x) {
-  const std::vector<HNode>& nodes = h.nodes();
+struct TransportBuffers {
   std::vector<Values<N>> sent;
+  std::array<std::vector<std::array<Vec3, 6>>, N> facing;
+  Delivery<N> delivery;
+  std::array<std::vector<Vec3>, N> out;
+};
+
+// T x for N vectors x at once, x given at the leaves (indexed by node): zero except at leaf elements.
+// Returns t.out.
+template <size_t N>
+const std::array<std::vector<Vec3>, N>& transport(const Hierarchy& h, const std::array<const std::vector<Vec3>*, N>& x,
+                                                  TransportBuffers<N>& t) {
+  const std::vector<HNode>& nodes = h.nodes();
+  std::vector<Values<N>>& sent = t.sent;
   area_means(h, sent, [&](const HNode& n, size_t k) {
     Values<N> r;
     for (size_t m = 0; m < N; ++m) r.v[m] = (*x[m])[k] * n.send;
     return r;
   });
   // A cluster sends by direction (cluster_radiosity.h), as the solve's gather takes it.
-  std::array<std::vector<std::array<Vec3, 6>>, N> facing;
-  for (size_t m = 0; m < N; ++m) facing[m] = facing_radiosity(h, [&](uint32_t k) { return sent[k].v[m]; });
-  const Delivery<N> d = delivered<N>(h, [&](uint32_t source, const HNode& receiver) {
+  std::array<std::vector<std::array<Vec3, 6>>, N>& facing = t.facing;
+  for (size_t m = 0; m < N; ++m) facing_radiosity(h, [&](uint32_t k) { return sent[k].v[m]; }, facing[m]);
+  Delivery<N>& d = t.delivery;
+  delivered<N>(h, [&](uint32_t source, const HNode& receiver) {
     const HNode& s = nodes[source];
     if (!s.cluster) return sent[source].v;
     const Vec3 u = normalize(receiver.center - s.center);
     std::array<Vec3, N> v;
     for (size_t m = 0; m < N; ++m) v[m] = radiosity_towards(s, facing[m][source], u, sent[source].v[m]);
     return v;
-  });
-  std::array<std::vector<Vec3>, N> out;
+  }, d);
+  std::array<std::vector<Vec3>, N>& out = t.out;
   for (size_t m = 0; m < N; ++m) {
     out[m].assign(nodes.size(), Vec3{});
     for (size_t k = 0; k < nodes.size(); ++k)
@@ -206,9 +222,10 @@ template <class F>
 std::vector<double> row_sums(const Hierarchy& h, F send) {
   std::vector<double> mean;
   area_means(h, mean, [&](const HNode& n, size_t) { return send(n); });
-  const Delivery<1> d = delivered<1>(h, [&](uint32_t source, const HNode&) {
+  Delivery<1> d;
+  delivered<1>(h, [&](uint32_t source, const HNode&) {
     return std::array<Vec3, 1>{Vec3(mean[source], mean[source], mean[source])};
-  });
+  }, d);
   std::vector<double> out(d.H.size());
   for (size_t k = 0; k < out.size(); ++k) out[k] = d.H[k][0].x;
   return out;
@@ -359,15 +376,28 @@ uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row, const std::vector
   return left;
 }
 
-double aggregation_correction(Hierarchy& h, double floor, double* level) {
+struct CorrectionBuffers::Held {
+  std::vector<Vec3> b, v;
+  TransportBuffers<2> t;
+};
+
+CorrectionBuffers::CorrectionBuffers() : held(std::make_unique<Held>()) {}
+CorrectionBuffers::~CorrectionBuffers() = default;
+
+double aggregation_correction(Hierarchy& h, double floor, double* level, CorrectionBuffers* buffers) {
+  CorrectionBuffers own;
+  CorrectionBuffers::Held& held = *(buffers ? buffers : &own)->held;
   std::vector<HNode>& nodes = h.nodes();
-  std::vector<Vec3> b(nodes.size()), v(nodes.size());
+  std::vector<Vec3>& b = held.b;
+  std::vector<Vec3>& v = held.v;
+  b.assign(nodes.size(), Vec3{});
+  v.assign(nodes.size(), Vec3{});
   for (size_t k = 0; k < nodes.size(); ++k)
     if (is_leaf_element(nodes[k])) {
       b[k] = nodes[k].B;
       v[k] = nodes[k].B - nodes[k].emission - mul(nodes[k].rho, nodes[k].D);
     }
-  const std::array<std::vector<Vec3>, 2> t = transport<2>(h, {&b, &v});  // one walk over the links for both
+  const std::array<std::vector<Vec3>, 2>& t = transport<2>(h, {&b, &v}, held.t);  // one walk over the links for both
   const std::vector<Vec3>& tb = t[0];
   const std::vector<Vec3>& tv = t[1];
   Vec3 num, den, total;

@@ -23,12 +23,7 @@ namespace {
 // as it is wide, where light crosses many elements from one end to the other.
 TEST(Hierarchical, OverRelaxedSweepsReachTheSameSolutionInFewer) {
   for (const double length : {1.0, 8.0}) {
-    Scene box = test::closed_box(1.0, {0.9, 0.9, 0.9}, {0, 0, 0});
-    for (Polygon& p : box.polygons)
-      for (Vec3& v : p.v) v.z *= length;
-    box.materials.push_back({"lamp", {0.5, 0.5, 0.5}, {1, 1, 1}});
-    for (Polygon& p : box.polygons)  // the end at z = 0
-      if (std::fabs(polygon_normal(p).z) > 0.5 && polygon_centroid(p).z < 0.5) p.material = 1;
+    const Scene box = test::corridor_lit_at_one_end(length, {0.9, 0.9, 0.9});
     const ClusterTree tree = build_cluster_tree(box);
     const RayScene rays(box);
     std::vector<Vec3> B[2];

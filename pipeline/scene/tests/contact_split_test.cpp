@@ -126,7 +126,9 @@ TEST(ContactSplit, NothingEnclosedWhereWhatStandsFacesBothWays) {
   const Scene single = split_contacts(s, one);
   EXPECT_EQ(one.covered, 1u);
   for (const Polygon& q : single.polygons)
-    if (std::fabs(polygon_normal(q).y - 1) < 1e-9) EXPECT_EQ(covered(single, q), polygon_centroid(q).x > 2) << polygon_centroid(q).x;
+    if (std::fabs(polygon_normal(q).y - 1) < 1e-9) {
+      EXPECT_EQ(covered(single, q), polygon_centroid(q).x > 2) << polygon_centroid(q).x;
+    }
 }
 
 }  // namespace

@@ -39,16 +39,23 @@ std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, c
 
 // By node, up to the last cluster (clusters only are read): for a cluster, Σ over its element roots of
 // facing[a] × value(root), value(k) node k's radiosity (an element root's: its leaves' area mean).
+// Into `out`, whose memory is kept: a sweep takes them again every time (fresh pages are a fault each).
 template <class Value>
-std::vector<std::array<Vec3, 6>> facing_radiosity(const Hierarchy& h, Value value) {
+void facing_radiosity(const Hierarchy& h, Value value, std::vector<std::array<Vec3, 6>>& out) {
   const std::vector<HNode>& nodes = h.nodes();
   size_t clusters = 0;
   for (size_t k = 0; k < nodes.size(); ++k)
     if (nodes[k].cluster) clusters = k + 1;
-  std::vector<std::array<Vec3, 6>> out(clusters);
+  out.assign(clusters, std::array<Vec3, 6>{});
   // Children come after their parents: from the end, each cluster is complete before its parent takes it.
   for (size_t k = clusters; k-- > 0;)
     if (nodes[k].cluster) out[k] = facing_from_children(h, uint32_t(k), out, value);
+}
+
+template <class Value>
+std::vector<std::array<Vec3, 6>> facing_radiosity(const Hierarchy& h, Value value) {
+  std::vector<std::array<Vec3, 6>> out;
+  facing_radiosity(h, value, out);
   return out;
 }
 

@@ -1,6 +1,7 @@
 // Small generated scenes with exact answers, shared by the pipeline's tests.
 #pragma once
 
+#include <cmath>
 #include <utility>
 
 #include "walkrad/formats/scene.h"
@@ -28,6 +29,18 @@ inline Scene closed_box(double s, Vec3 rho, Vec3 e) {
   for (Polygon& p : scene.polygons)  // face inwards
     if (dot(polygon_normal(p), centre - polygon_centroid(p)) < 0) std::swap(p.v[1], p.v[3]);
   return scene;
+}
+
+// A closed box of reflectance rho, 1 m square and `length` long in z, lit by its end at z = 0
+// (emission 1, reflectance 0.5): light crosses many elements from one end to the other.
+inline Scene corridor_lit_at_one_end(double length, Vec3 rho) {
+  Scene box = closed_box(1.0, rho, {0, 0, 0});
+  for (Polygon& p : box.polygons)
+    for (Vec3& v : p.v) v.z *= length;
+  box.materials.push_back({"lamp", {0.5, 0.5, 0.5}, {1, 1, 1}});
+  for (Polygon& p : box.polygons)
+    if (std::fabs(polygon_normal(p).z) > 0.5 && polygon_centroid(p).z < 0.5) p.material = 1;
+  return box;
 }
 
 }  // namespace walkrad::test
