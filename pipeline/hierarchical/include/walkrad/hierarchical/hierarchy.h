@@ -51,15 +51,21 @@ struct Link {
 
 inline bool has_seen(const Link& l) { return (l.seen[0] | l.seen[1] | l.seen[2] | l.seen[3]) != 0; }
 
-// A node's values: everything but its links, plain data (a checkpoint copies it whole).
+// A node's values: everything but its links, plain data (a checkpoint copies it whole). What a sweep
+// reads of each link's source comes first, in the node's first cache line (Bt, cluster, center; HNode
+// is aligned to one, and 640 bytes): read at random across the level for every link of every sweep,
+// they lay 384 bytes apart in two lines. The flags sit together: no padding after each.
 struct HNodeValues {
-  Bounds bounds;
-  Vec3 center;            // of the bounds
-  double radius = 0;      // half the bounds' diagonal
-  double area = 0;        // one-sided area (element) or the total below (cluster)
+  Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
   bool cluster = false;
   uint8_t depth = 0;      // element: 0 for an input polygon
+  bool balanced = false;  // leaf: its factors make its row sum exactly 1 (balance_closed_transport)
+  bool D_known = false;   // D computed (new elements get theirs before they are solved)
   uint32_t polygon = UINT32_MAX;  // element: its input polygon
+  Vec3 center;            // of the bounds
+  Bounds bounds;
+  double radius = 0;      // half the bounds' diagonal
+  double area = 0;        // one-sided area (element) or the total below (cluster)
   uint32_t tree_node = UINT32_MAX;  // cluster: its ClusterTree node
   int32_t parent = -1;
   uint32_t child_begin = 0, child_count = 0;  // into Hierarchy::children
@@ -73,13 +79,10 @@ struct HNodeValues {
   Vec3 B, H;              // radiosity, irradiance gathered this iteration along its own links
   Vec3 Hp;                // irradiance its parent's links push to it this iteration (their shares of it)
   double Fp = 0;          // and their form factors, so weighted (its share of the parent's row sum)
-  Vec3 Bt;                // radiosity as links carry it away: leaves B × send, area-averaged up
   double send = 1.0;      // leaf: factor on what it sends (closed scenes: link_transport.h)
   double receive = 1.0;   // leaf: factor on what it gathers (closed scenes: link_transport.h)
-  bool balanced = false;  // leaf: its factors make its row sum exactly 1 (balance_closed_transport)
   Vec3 D;                 // element: irradiance from punctual lights (punctual_lights.h), its area mean
   Vec3 Hl;                // leaf element: the irradiance its links and its ancestors' gave, last solved
-  bool D_known = false;   // D computed (new elements get theirs before they are solved)
   double Fsum = 0;        // Σ F over this node's links (its share of a leaf's row sum)
   float error = 0;        // the error its own links leave in its radiosity (luminance, W/m²; error_estimate.cpp)
   double R = 0;           // direct importance (leaf elements; summed up in clusters)
@@ -87,7 +90,7 @@ struct HNodeValues {
   uint32_t hit_begin = 0, hit_end = 0;  // element: its view hits, Hierarchy::hits()[begin, end)
 };
 
-struct HNode : HNodeValues {
+struct alignas(64) HNode : HNodeValues {
   std::vector<Link> links;  // links where this node receives
 };
 
