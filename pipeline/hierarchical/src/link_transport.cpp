@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -385,8 +386,8 @@ CorrectionBuffers::CorrectionBuffers() : held(std::make_unique<Held>()) {}
 CorrectionBuffers::~CorrectionBuffers() = default;
 
 double aggregation_correction(Hierarchy& h, double floor, double* level, CorrectionBuffers* buffers) {
-  CorrectionBuffers own;
-  CorrectionBuffers::Held& held = *(buffers ? buffers : &own)->held;
+  std::optional<CorrectionBuffers> own;
+  CorrectionBuffers::Held& held = *(buffers ? buffers : &own.emplace())->held;
   std::vector<HNode>& nodes = h.nodes();
   std::vector<Vec3>& b = held.b;
   std::vector<Vec3>& v = held.v;
