@@ -121,6 +121,7 @@ void Solver::apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vec
 }
 
 void Solver::evaluate_divided(IterationStats& is) {
+  take_requests();
   // The cluster receivers' links (on every rank) apart from this rank's receivers'.
   std::vector<Pending> shared;
   size_t kept = 0;
@@ -203,7 +204,7 @@ void Solver::shoot_importance_exactly() {
 }
 
 void Solver::note_link_memory() {
-  const uint64_t bytes = pending_.capacity() * sizeof(Pending) + link_bytes(h_);
+  const uint64_t bytes = requests_.capacity() * sizeof(LinkRequest) + pending_.capacity() * sizeof(Pending) + link_bytes(h_);
   stats_.link_bytes_peak = std::max(stats_.link_bytes_peak, bytes);
   rank_work().link_bytes_peak = std::max(rank_work().link_bytes_peak, bytes);
 }

@@ -10,7 +10,6 @@
 #include <tbb/parallel_for.h>
 
 #include "walkrad/core/ranks.h"
-#include "walkrad/core/rounding.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/formfactor/form_factor.h"
 
@@ -96,11 +95,20 @@ void Solver::store_links(const std::vector<Pending>& list) {
   }
 }
 
+void Solver::take_requests() {
+  if (s_.check_limits) s_.check_limits("link evaluation", requests_.size() * sizeof(Pending));
+  pending_.reserve(requests_.size());
+  for (const LinkRequest& r : requests_) pending_.emplace_back(r.receiver, r.source, r.need_rays, r.samples, r.volume);
+  note_link_memory();  // both lists held: the round's peak
+  std::vector<LinkRequest>().swap(requests_);
+}
+
 void Solver::evaluate_pending(IterationStats& is) {
   if (divided_) {
     evaluate_divided(is);
     return;
   }
+  take_requests();
   // Under mpirun each rank evaluates one contiguous block of the round's links, of about equal cost
   // (rays or samples, plus one), and every rank gathers every block (ranks.h): the links and their
   // order are the same on every rank, and so is each link's result.
@@ -437,58 +445,6 @@ double Solver::point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const 
   const double r2 = dot(d, d);
   if (r2 <= 0) return 0;
   return std::max(0.0, dot(nx, d)) * std::max(0.0, -dot(ny, d)) / (r2 * r2);
-}
-
-uint64_t Solver::polygon_pairs(const HNode& a, const HNode& b) const {
-  return uint64_t(a.cluster ? h_.polygon_count(a) : 1) * uint64_t(b.cluster ? h_.polygon_count(b) : 1);
-}
-
-double Solver::exact_unoccluded(const HNode& ri, const HNode& sj) const {
-  // The polygons in place (a cluster's are the scene's), each with what the pair test below needs.
-  struct Face {
-    const Polygon* p;
-    Vec3 normal;  // polygon_normal, as element_to_element takes it
-    double slack; // how far its corners lie off the plane through its first along that normal, and rounding
-  };
-  auto faces = [&](const HNode& n, std::vector<Face>& out) {
-    out.clear();
-    auto add = [&](const Polygon& p, const Vec3& normal) {
-      double off = 0, size = 0;
-      for (int k = 0; k < p.count; ++k) {
-        off = std::max(off, std::fabs(dot(p.v[size_t(k)] - p.v[0], normal)));
-        size = std::max(size, rounding_at(p.v[size_t(k)]));
-      }
-      out.push_back({&p, normal, off + 1024 * size});
-    };
-    if (!n.cluster) {
-      add(n.shape, n.normal);
-    } else {
-      for (uint32_t k = h_.polygon_begin(n); k < h_.polygon_begin(n) + h_.polygon_count(n); ++k)
-        add(h_.scene().polygons[h_.tree().polygons[k]], h_.tree_polygon_normal(k));
-    }
-  };
-  // Every corner of a strictly behind b's plane (through b's first corner), by more than slack: no
-  // point of a sees b's front, and no point of b lies above a's horizon where the roles are swapped.
-  // element_to_element gives such a pair exactly 0 (its points skip the source, or clip it away), so
-  // leaving it out changes no bit. office3's bake: 6.36 M of its 12.95 M pairs (49%).
-  auto behind = [](const Face& a, const Face& b) {
-    for (int k = 0; k < a.p->count; ++k)
-      if (dot(a.p->v[size_t(k)] - b.p->v[0], b.normal) >= -(a.slack + b.slack)) return false;
-    return true;
-  };
-  thread_local std::vector<Face> rs, ss;
-  faces(ri, rs);
-  faces(sj, ss);
-  double sum = 0;
-  for (const Face& a : rs) {
-    const double area = polygon_area(*a.p);
-    for (const Face& b : ss) {
-      if (a.p->v == b.p->v && a.p->count == b.p->count) continue;
-      if (behind(a, b) || behind(b, a)) continue;
-      sum += area * element_to_element(*a.p, *b.p);
-    }
-  }
-  return ri.area > 0 ? sum / ri.area : 0.0;
 }
 
 }  // namespace walkrad::hierarchical_detail

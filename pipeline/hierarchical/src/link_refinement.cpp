@@ -108,7 +108,7 @@ std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
 void Solver::recast(uint32_t i, const Link& l) {
   --stats_.links;
   ++stats_.recast;
-  add_pending({i, l.source, (l.rays & 1) != 0, kHiddenRecast * int(l.samples), (l.rays & 2) != 0});
+  add_pending({i, l.source, kHiddenRecast * int(l.samples), (l.rays & 1) != 0, (l.rays & 2) != 0});
 }
 
 void Solver::replace_link(uint32_t i, const Link& l, bool split_receiver, std::vector<uint32_t>& candidates) {

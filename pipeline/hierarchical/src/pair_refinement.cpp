@@ -205,9 +205,9 @@ void Solver::refine_pairs(std::vector<PairTask> tasks) {
         }
       } else if (d.kind == PairKind::kLink) {
         // The list doubles when full: 2n entries allocated and filled while the n old ones are copied.
-        if (s_.check_limits && pending_.size() == pending_.capacity() && pending_.size() >= 65536)
-          s_.check_limits("refinement", 2 * pending_.capacity() * sizeof(Pending));
-        add_pending({i, j, d.need_rays, d.samples, d.volume});
+        if (s_.check_limits && requests_.size() == requests_.capacity() && requests_.size() >= 65536)
+          s_.check_limits("refinement", 2 * requests_.capacity() * sizeof(LinkRequest));
+        add_pending({i, j, d.samples, d.need_rays, d.volume});
       }
       if (d.kind == PairKind::kDrop || d.kind == PairKind::kLink) d = PairOutcome{};
     }

@@ -42,6 +42,16 @@ struct Pending {
 };
 static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
 
+// A link the refinement asks for, as it asks (Pending's first fields): the round's list grows by
+// doubling while the refinement runs, a quarter of the bytes a Pending would copy and fault in, and is
+// made into Pendings once, at their exact count, when the round's links are evaluated (take_requests).
+struct LinkRequest {
+  uint32_t receiver, source;
+  int32_t samples;
+  bool need_rays, volume;
+};
+static_assert(sizeof(LinkRequest) == 16, "LinkRequest's size changed: update docs/performance.md");
+
 // A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
 // divided_solve.cpp): whether the receiver splits, and every link it does not keep (all of them when it
 // splits), in the links' order.
@@ -296,11 +306,13 @@ class Solver {
   bool here(uint32_t i) const { return !divided_ || holds_links(h_, i); }
   // Appends a new link to the round's list where this rank keeps its receiver's links; counts it
   // either way (the round's new links are the same count on every rank).
-  void add_pending(const Pending& p) {
-    if (here(p.receiver)) pending_.push_back(p);
+  void add_pending(const LinkRequest& r) {
+    if (here(r.receiver)) requests_.push_back(r);
     else ++elsewhere_;
   }
-  uint64_t new_link_count() const { return pending_.size() + elsewhere_; }
+  uint64_t new_link_count() const { return requests_.size() + pending_.size() + elsewhere_; }
+  // The round's requests made into pending_ (at its exact size), the requests given back.
+  void take_requests();
 
   // Every element receiver's plan with something to do, from the rank that holds its links, to every
   // rank: plan_of[i] indexes plans (UINT32_MAX: keep every link).
@@ -448,7 +460,8 @@ class Solver {
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
-  std::vector<Pending> pending_;
+  std::vector<LinkRequest> requests_;  // the round's new links, as the refinement asks for them
+  std::vector<Pending> pending_;       // the same, to evaluate (take_requests)
   // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
   // and the lists they filter (a deque: a list stays where it is while others are added).
   std::vector<PairTask> queued_pairs_;

@@ -52,8 +52,27 @@ struct QuadraturePoint {
 };
 
 // order×order Gauss-Legendre points over a triangle or quad (a triangle as a collapsed quad:
-// the Duffy transform, so every point lies strictly inside). order in [1, 8].
-std::vector<QuadraturePoint> quadrature_points(const Polygon& receiver, int order);
+// the Duffy transform, so every point lies strictly inside). order in [1, 8]. On the stack: a bake
+// asks for them at every link's receiver quadrant and every exactly integrated polygon pair (a
+// 32-room level: tens of millions of calls), where a heap list per call cost more than the points.
+// Plain doubles, not QuadraturePoints, so that the 64 slots are not zeroed on every call.
+struct QuadraturePoints {
+  struct Raw {
+    double x, y, z, weight;
+  };
+  struct Iterator {
+    const Raw* at;
+    QuadraturePoint operator*() const { return {{at->x, at->y, at->z}, at->weight}; }
+    Iterator& operator++() { ++at; return *this; }
+    bool operator!=(const Iterator& o) const { return at != o.at; }
+  };
+  Raw point[64];
+  int count = 0;
+  Iterator begin() const { return {point}; }
+  Iterator end() const { return {point + count}; }
+  size_t size() const { return size_t(count); }
+};
+QuadraturePoints quadrature_points(const Polygon& receiver, int order);
 
 // The quadrature order for a receiver of size `size` seeing a source at distance `distance`
 // (centroid to centroid): 2 when far, up to 8 when touching.
@@ -62,5 +81,27 @@ int quadrature_order(double distance, double receiver_size, double source_size);
 // Unoccluded element-to-element form factor F_ij (receiver i, source j): the fraction of the
 // energy leaving i that arrives at j. Only j's front side is seen.
 double element_to_element(const Polygon& receiver, const Polygon& source);
+
+// The same, to the bit, for one polygon met against many (a cluster's exact unoccluded form factor,
+// pair by pair): each end's normal, area and centroid computed once, and the receiver's quadrature
+// points once per order (ReceiverPoints) instead of once per pair.
+struct ElementEnd {
+  explicit ElementEnd(const Polygon& p);
+  const Polygon& poly;
+  Vec3 normal, centroid;
+  double area, size;  // size: √area, as quadrature_order takes it
+};
+class ReceiverPoints {
+ public:
+  explicit ReceiverPoints(const Polygon& receiver) : receiver_(receiver) {}
+  const QuadraturePoints& of_order(int order);
+
+ private:
+  const Polygon& receiver_;
+  QuadraturePoints points_[8];
+  bool have_[8] = {};
+};
+double element_to_element(const ElementEnd& receiver, const ElementEnd& source, const ContourSource& contour,
+                          ReceiverPoints& points);
 
 }  // namespace walkrad
