@@ -2,33 +2,14 @@
 #include "walkrad/core/rounding.h"
 
 #include <algorithm>
+
 #include <cmath>
-#include <cstddef>
-#include <cstring>
 
 namespace walkrad {
-
-namespace {
-
-// A box's six doubles in a row, lo.x … hi.z (the index the planes keep), copied (no pointer walks
-// past lo into hi).
-struct Corners {
-  double v[6];
-};
-static_assert(sizeof(Bounds) == sizeof(Corners) && offsetof(Bounds, hi) == 3 * sizeof(double) &&
-              offsetof(Vec3, y) == sizeof(double) && offsetof(Vec3, z) == 2 * sizeof(double));
-Corners corners(const Bounds& box) {
-  Corners c;
-  std::memcpy(c.v, &box, sizeof c.v);
-  return c;
-}
-
-}  // namespace
 
 Shaft::Shaft(const Bounds& a, const Bounds& b) {
   hull_ = a;
   hull_.extend(b);
-  double d[12];  // each plane's offset along its normal
   // For each pair of axes (k, l) and each corner direction (sk, sl) of the hull's cross-section: if
   // one box alone reaches the hull along k and the other alone along l, the hull's corner is
   // empty, and the plane through the two boxes' corner edges (parallel to the third axis) cuts it off.
@@ -51,15 +32,18 @@ Shaft::Shaft(const Bounds& a, const Bounds& b) {
           if (nk * sign_k + nl * sign_l < 0) { nk = -nk; nl = -nl; }
           const double len = std::sqrt(nk * nk + nl * nl);
           if (len == 0) continue;
-          const int i = planes_++;
-          nk_[i] = nk / len;
-          nl_[i] = nl / len;
-          d[i] = (nk_[i] * ak + nl_[i] * al);
-          // Indices into a box's doubles: lo.x, lo.y, lo.z, hi.x, hi.y, hi.z.
-          inner_k_[i] = uint8_t(nk_[i] >= 0 ? k : 3 + k);
-          outer_k_[i] = uint8_t(nk_[i] >= 0 ? 3 + k : k);
-          inner_l_[i] = uint8_t(nl_[i] >= 0 ? l : 3 + l);
-          outer_l_[i] = uint8_t(nl_[i] >= 0 ? 3 + l : l);
+          Plane p;
+          p.nk = nk / len;
+          p.nl = nl / len;
+          p.d = (p.nk * ak + p.nl * al);
+          static constexpr double Vec3::*kAxis[3] = {&Vec3::x, &Vec3::y, &Vec3::z};
+          p.k = kAxis[k];
+          p.l = kAxis[l];
+          p.inner_k = p.nk >= 0 ? &Bounds::lo : &Bounds::hi;
+          p.outer_k = p.nk >= 0 ? &Bounds::hi : &Bounds::lo;
+          p.inner_l = p.nl >= 0 ? &Bounds::lo : &Bounds::hi;
+          p.outer_l = p.nl >= 0 ? &Bounds::hi : &Bounds::lo;
+          plane_[planes_++] = p;
         }
   // Touching is not overlapping: a polygon that only touches the hull's boundary (the wall beside a
   // floor element) cannot block a segment between the two boxes' interiors, and ray end points are
@@ -74,7 +58,7 @@ Shaft::Shaft(const Bounds& a, const Bounds& b) {
     inner_hi_[k] = hull_.hi[k] - margin;
     flat_[k] = !(hull_.hi[k] - hull_.lo[k] > 2 * margin);
   }
-  for (int i = 0; i < planes_; ++i) inner_d_[i] = d[i] - margin;
+  for (int i = 0; i < planes_; ++i) inner_d_[i] = plane_[i].d - margin;
 }
 
 bool Shaft::overlaps(const Bounds& box) const {
@@ -83,61 +67,41 @@ bool Shaft::overlaps(const Bounds& box) const {
       // A flat hull (two coplanar elements) has zero thickness: only a box crossing its plane counts.
       if (!flat_[k] || box.hi[k] <= hull_.lo[k] || box.lo[k] >= hull_.hi[k]) return false;
     }
-  const Corners b = corners(box);
-  for (int i = 0; i < planes_; ++i)  // the box's corner furthest inside: outside if even it is not inside
-    if (nk_[i] * b.v[inner_k_[i]] + nl_[i] * b.v[inner_l_[i]] >= inner_d_[i]) return false;
+  for (int i = 0; i < planes_; ++i) {
+    const Plane& p = plane_[i];
+    // The box's corner furthest inside (most negative along n): outside if even it is not inside.
+    if (p.nk * (box.*p.inner_k).*p.k + p.nl * (box.*p.inner_l).*p.l >= inner_d_[i]) return false;
+  }
   return true;
 }
 
 bool Shaft::contains(const Bounds& box) const {
   for (int k = 0; k < 3; ++k)
     if (!(box.lo[k] > inner_lo_[k] && box.hi[k] < inner_hi_[k])) return false;  // a flat hull contains nothing
-  const Corners b = corners(box);
-  for (int i = 0; i < planes_; ++i)  // the box's corner furthest out along n: inside if even it is
-    if (!(nk_[i] * b.v[outer_k_[i]] + nl_[i] * b.v[outer_l_[i]] < inner_d_[i])) return false;
-  return true;
-}
-
-Shaft::Side Shaft::side(const Bounds& box) const {
-  bool inside = true;
-  for (int k = 0; k < 3; ++k) {
-    if (box.hi[k] <= inner_lo_[k] || box.lo[k] >= inner_hi_[k]) {
-      if (!flat_[k] || box.hi[k] <= hull_.lo[k] || box.lo[k] >= hull_.hi[k]) return kOutside;
-      inside = false;
-    } else if (!(box.lo[k] > inner_lo_[k] && box.hi[k] < inner_hi_[k])) {
-      inside = false;
-    }
-  }
-  const Corners b = corners(box);
   for (int i = 0; i < planes_; ++i) {
-    if (nk_[i] * b.v[inner_k_[i]] + nl_[i] * b.v[inner_l_[i]] >= inner_d_[i]) return kOutside;
-    inside = inside && nk_[i] * b.v[outer_k_[i]] + nl_[i] * b.v[outer_l_[i]] < inner_d_[i];
+    const Plane& p = plane_[i];
+    // The box's corner furthest out along n: inside if even it is.
+    if (!(p.nk * (box.*p.outer_k).*p.k + p.nl * (box.*p.outer_l).*p.l < inner_d_[i])) return false;
   }
-  return inside ? kInside : kCrossing;
+  return true;
 }
 
 namespace {
 
 // Depth-first from `start`, child 0 first: entries come out in tree order, each handed to emit, which
 // returns false to stop the walk (then so does this). tags null: no volumes. compact (without tags):
-// a node wholly inside the shaft is one entry. start_crossing: the caller has found `start` crossing
-// the shaft's side already (compact only), so it is opened without being tested again.
+// a node wholly inside the shaft is one entry.
 template <class Emit>
 bool descend(const ClusterTree& tree, const Shaft& shaft, int32_t start, uint32_t exclude_a, uint32_t exclude_b,
-             const VolumeTags* tags, bool compact, Emit&& emit, bool start_crossing = false) {
+             const VolumeTags* tags, bool compact, Emit&& emit) {
   std::vector<int32_t> stack = {start};
   while (!stack.empty()) {
     const int32_t index = stack.back();
     const ClusterNode& node = tree.nodes[size_t(index)];
     stack.pop_back();
-    if (compact) {
-      const Shaft::Side side = start_crossing && index == start ? Shaft::kCrossing : shaft.side(node.bounds);
-      if (side == Shaft::kOutside) continue;
-      if (side == Shaft::kInside) {
-        if (!emit(uint32_t(index) | kWholeNode)) return false;
-        continue;
-      }
-    } else if (!shaft.overlaps(node.bounds)) {
+    if (!shaft.overlaps(node.bounds)) continue;
+    if (compact && shaft.contains(node.bounds)) {
+      if (!emit(uint32_t(index) | kWholeNode)) return false;
       continue;
     }
     if (tags && tags->node[size_t(index)] && tags->see_through(uint32_t(index) | kVolumeNode)) {
@@ -173,10 +137,7 @@ void filter_compact(const ClusterTree& tree, const Shaft& shaft, const std::vect
   for (uint32_t c : candidates) {
     if (c & kWholeNode) {
       const uint32_t k = c & ~kWholeNode;
-      const Shaft::Side side = shaft.side(tree.nodes[k].bounds);
-      if (side == Shaft::kInside ? !emit(c)
-                                 : side == Shaft::kCrossing &&
-                                       !descend(tree, shaft, int32_t(k), exclude_a, exclude_b, nullptr, true, emit, true))
+      if (shaft.contains(tree.nodes[k].bounds) ? !emit(c) : !descend(tree, shaft, int32_t(k), exclude_a, exclude_b, nullptr, true, emit))
         return;
     } else if (c != exclude_a && c != exclude_b && shaft.overlaps(tree.polygon_bounds[c]) && !emit(c)) {
       return;

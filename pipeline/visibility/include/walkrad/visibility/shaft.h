@@ -24,20 +24,23 @@ class Shaft {
   // for every box inside it.
   bool contains(const Bounds& box) const;
   int plane_count() const { return planes_; }
-  // Both at once, for the candidate walk that asks both of every node it meets: kOutside exactly
-  // where overlaps() is false, kInside exactly where contains() is true.
-  enum Side { kOutside, kCrossing, kInside };
-  Side side(const Bounds& box) const;
 
  private:
   Bounds hull_;
   // Each plane is parallel to the third axis: its normal has two components, on axes k < l (the
-  // third is exactly 0, so two terms give dot(n, x) to the bit). overlaps() runs for every tree node
-  // a link's shaft meets (half of a large level's refinement), so the planes are kept as columns and
-  // a box's corner furthest inside (most negative along n) or furthest out is picked by index into
-  // the box's six doubles (lo.x … hi.z), not by member pointers.
-  double nk_[12] = {}, nl_[12] = {};  // outward: points x with nk x_k + nl x_l > d are outside
-  uint8_t inner_k_[12] = {}, inner_l_[12] = {}, outer_k_[12] = {}, outer_l_[12] = {};
+  // third is exactly 0, so two terms give dot(n, x) to the bit).
+  struct Plane {
+    double nk, nl;  // outward
+    double d;       // points x with nk x_k + nl x_l > d are outside
+    double Vec3::*k;
+    double Vec3::*l;
+    // A box's corner furthest inside (most negative along n) and furthest out, on each axis.
+    Vec3 Bounds::*inner_k;
+    Vec3 Bounds::*inner_l;
+    Vec3 Bounds::*outer_k;
+    Vec3 Bounds::*outer_l;
+  };
+  Plane plane_[12];
   int planes_ = 0;
   // What overlaps() compares against, computed once (it runs for every tree node a link's shaft
   // meets: half of a large level's solve): the hull shrunk by the margin, whether each axis is flat,
