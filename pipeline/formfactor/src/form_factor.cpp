@@ -6,10 +6,6 @@
 #include <array>
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace walkrad {
 
 namespace {
@@ -81,74 +77,10 @@ inline double angle_of(double s, double c) {
   return c < 0 ? kPi - angle : angle;
 }
 
-#if defined(__SSE2__)
-
-// Two lanes at once, each the scalar code's operations in its order (IEEE: the same bits; the
-// baseline x86-64 target has no fused multiply-add to contract them into).
-inline __m128d select(__m128d mask, __m128d yes, __m128d no) { return _mm_or_pd(_mm_and_pd(mask, yes), _mm_andnot_pd(mask, no)); }
-
-inline __m128d atan_core2(__m128d t) {
-  const __m128d z = _mm_mul_pd(t, t);
-  auto mul_sub = [&](__m128d x, double c) { return _mm_sub_pd(_mm_mul_pd(x, z), _mm_set1_pd(c)); };
-  auto mul_add = [&](__m128d x, double c) { return _mm_add_pd(_mm_mul_pd(x, z), _mm_set1_pd(c)); };
-  __m128d p = _mm_sub_pd(_mm_mul_pd(_mm_set1_pd(-8.750608600031904122785e-1), z), _mm_set1_pd(1.615753718733365076637e1));
-  p = mul_sub(p, 7.500855792314704667340e1);
-  p = mul_sub(p, 1.228866684490136173410e2);
-  p = mul_sub(p, 6.485021904942025371773e1);
-  __m128d q = _mm_add_pd(z, _mm_set1_pd(2.485846490142306297962e1));
-  q = mul_add(q, 1.650270098316988542046e2);
-  q = mul_add(q, 4.328810604912902668951e2);
-  q = mul_add(q, 4.853903996359136964868e2);
-  q = mul_add(q, 1.945506571482613964425e2);
-  return _mm_add_pd(t, _mm_mul_pd(t, _mm_div_pd(_mm_mul_pd(z, p), q)));
-}
-
-inline __m128d angle_of2(__m128d s, __m128d c) {
-  const __m128d zero = _mm_setzero_pd();
-  const __m128d a = _mm_andnot_pd(_mm_set1_pd(-0.0), c);
-  const __m128d far = _mm_cmpgt_pd(s, _mm_mul_pd(_mm_set1_pd(2.414213562373095), a));
-  const __m128d mid = _mm_cmpgt_pd(s, _mm_mul_pd(_mm_set1_pd(0.66), a));
-  const __m128d num = select(far, a, select(mid, _mm_sub_pd(s, a), s));
-  const __m128d den = select(far, s, select(mid, _mm_add_pd(s, a), a));
-  const __m128d r = atan_core2(_mm_div_pd(num, den));
-  const __m128d near = _mm_and_pd(_mm_cmpgt_pd(a, zero), r);  // two zero vectors: 0, not NaN
-  const __m128d angle = select(far, _mm_sub_pd(_mm_set1_pd(0.5 * kPi), r), select(mid, _mm_add_pd(_mm_set1_pd(0.25 * kPi), r), near));
-  return select(_mm_cmplt_pd(c, zero), _mm_sub_pd(_mm_set1_pd(kPi), angle), angle);
-}
-
-#endif
-
 // Σ_k β_k n·(R_k × R_{k+1}) / |R_k × R_{k+1}| over the m ≤ 8 corners R (relative to the point), in
-// edge order. With SSE2 two edges at a time: the contour formula runs at every quadrature point of
-// every link and every gathered vertex (a third of the mesh phase), and its square root and three
-// divisions an edge are what it waits on; the terms are then summed one by one, in order, as before.
+// edge order. (Two edges at a time with SSE2 gave the same bits and no speed: 66-70 ns a call against
+// 61-64 ns one at a time, a benchmark of 2 M calls, 2026-11-29.)
 double contour_sum(const double* rx, const double* ry, const double* rz, int m, const Vec3& n) {
-#if defined(__SSE2__)
-  double term[8];
-  bool open[8];  // the edge subtends an angle: cl > 0 (or NaN, which the scalar sum carries too)
-  for (int k = 0; k < m; k += 2) {
-    const int k1 = k + 1 < m ? k + 1 : k;  // an odd count: the last lane repeats the last edge
-    const int j0 = k + 1 == m ? 0 : k + 1, j1 = k1 + 1 == m ? 0 : k1 + 1;
-    const __m128d x0 = _mm_set_pd(rx[k1], rx[k]), y0 = _mm_set_pd(ry[k1], ry[k]), z0 = _mm_set_pd(rz[k1], rz[k]);
-    const __m128d x1 = _mm_set_pd(rx[j1], rx[j0]), y1 = _mm_set_pd(ry[j1], ry[j0]), z1 = _mm_set_pd(rz[j1], rz[j0]);
-    const __m128d cx = _mm_sub_pd(_mm_mul_pd(y0, z1), _mm_mul_pd(z0, y1));
-    const __m128d cy = _mm_sub_pd(_mm_mul_pd(z0, x1), _mm_mul_pd(x0, z1));
-    const __m128d cz = _mm_sub_pd(_mm_mul_pd(x0, y1), _mm_mul_pd(y0, x1));
-    const __m128d cl = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(cx, cx), _mm_mul_pd(cy, cy)), _mm_mul_pd(cz, cz)));
-    const __m128d d01 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(x0, x1), _mm_mul_pd(y0, y1)), _mm_mul_pd(z0, z1));
-    const __m128d beta = angle_of2(cl, d01);
-    const __m128d dn = _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_set1_pd(n.x), cx), _mm_mul_pd(_mm_set1_pd(n.y), cy)),
-                                  _mm_mul_pd(_mm_set1_pd(n.z), cz));
-    _mm_storeu_pd(term + k, _mm_div_pd(_mm_mul_pd(beta, dn), cl));
-    const int open_mask = _mm_movemask_pd(_mm_cmpnle_pd(cl, _mm_setzero_pd()));
-    open[k] = open_mask & 1;
-    open[k + 1] = open_mask & 2;
-  }
-  double sum = 0.0;
-  for (int k = 0; k < m; ++k)
-    if (open[k]) sum += term[k];
-  return sum;
-#else
   double sum = 0.0;
   for (int k = 0; k < m; ++k) {
     const int j = k + 1 == m ? 0 : k + 1;
@@ -156,10 +88,10 @@ double contour_sum(const double* rx, const double* ry, const double* rz, int m, 
     const Vec3 c = cross(r0, r1);
     const double cl = length(c);
     if (cl <= 0) continue;  // p on the edge's line: the edge subtends no angle
-    sum += angle_of(cl, dot(r0, r1)) * dot(n, c) / cl;
+    const double beta = angle_of(cl, dot(r0, r1));
+    sum += beta * dot(n, c) / cl;
   }
   return sum;
-#endif
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
-// The contour formula's fast paths give the plain formula's bits: point_to_polygon (two edges at a
-// time where SSE2 is there) against the edge-by-edge sum written out here, and element_to_element with
-// prepared ends and a receiver's points kept across sources against the same pair from scratch. A
-// bake's determinism and its golden files rest on these being equal, not close.
+// The contour formula's shortcuts give the plain formula's bits: point_to_polygon (which skips the
+// clip where the polygon lies above the horizon) against the clipped edge-by-edge sum written out
+// here, and element_to_element with prepared ends and a receiver's points kept across sources (a
+// cluster pair's exact form factor) against the same pair from scratch. A bake's determinism and its
+// golden files rest on these being equal, not close.
 #include "walkrad/formfactor/form_factor.h"
 
 #include <cmath>
@@ -16,7 +17,7 @@
 namespace walkrad {
 namespace {
 
-// point_to_polygon as it was written before its edges were paired: one edge at a time, in order.
+// point_to_polygon written out plainly: always clipped, one edge at a time, in order.
 double edge_by_edge(const Vec3& p, const Vec3& n, const Polygon& poly) {
   const Vec3 area_normal = polygon_area_normal(poly);
   const double norm = length(area_normal);
@@ -66,9 +67,9 @@ Polygon random_polygon(Rng& rng, bool triangle) {
 }
 
 // Random polygons and points, with the cases the branches split on: points on a corner's line
-// (an edge with no angle), polygons clipped by the horizon into 3, 4 or 5 corners (odd counts leave
-// a lane spare), points on the plane, and every reduction branch of the angle.
-TEST(ContourBits, PairedEdgesGiveTheEdgeByEdgeSum) {
+// (an edge with no angle), polygons clipped by the horizon into 3, 4 or 5 corners, polygons wholly
+// above it, points on the plane, and every reduction branch of the angle.
+TEST(ContourBits, PointToPolygonGivesTheEdgeByEdgeSum) {
   Rng rng(7, 11);
   int compared = 0, clipped = 0, zero = 0;
   for (int trial = 0; trial < 200000; ++trial) {
