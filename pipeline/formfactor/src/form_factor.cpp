@@ -79,7 +79,7 @@ inline double angle_of(double s, double c) {
 
 // Σ_k β_k n·(R_k × R_{k+1}) / |R_k × R_{k+1}| over the m ≤ 8 corners R (relative to the point), in
 // edge order. (Two edges at a time with SSE2 gave the same bits and no speed: 66-70 ns a call against
-// 61-64 ns one at a time, a benchmark of 2 M calls, 2026-11-29.)
+// 59-66 ns one at a time, a benchmark of 2 M calls, 2026-11-29.)
 double contour_sum(const double* rx, const double* ry, const double* rz, int m, const Vec3& n) {
   double sum = 0.0;
   for (int k = 0; k < m; ++k) {
