@@ -403,8 +403,8 @@ class Solver {
   // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance (unless
   // with_importance is false). Jacobi gathers every node from the previous sweep's radiosity;
   // Gauss-Seidel gathers each input polygon's quadtree just before pushing it down, so it sees what
-  // the polygons before it got this sweep (clusters still gather first). Returns the largest relative
-  // change of a leaf's radiosity, weighed by its display weight.
+  // the polygons before it got this sweep, and each cluster as the walk reaches it. Returns the
+  // largest relative change of a leaf's radiosity, weighed by its display weight.
   // ω: the over-relaxation of the leaves' gathered irradiance (1: a plain Gauss-Seidel or Jacobi sweep).
   double solve_sweep(IterationStats& is, bool with_importance = true, double relaxation = 1.0);
 
