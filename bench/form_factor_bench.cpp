@@ -74,17 +74,13 @@ void BM_ClusterPairPrepared(benchmark::State& state) {
   const ClusterPair c;
   for (auto _ : state) {
     std::vector<ElementEnd> ends;
-    std::vector<ContourSource> contours;
-    for (const Polygon& s : c.sources) {
-      ends.emplace_back(s);
-      contours.emplace_back(s);
-    }
+    for (const Polygon& s : c.sources) ends.emplace_back(s);
     double sum = 0;
     for (const Polygon& r : c.receivers) {
       const ElementEnd receiver(r);
       ReceiverPoints points(r);
       for (size_t k = 0; k < c.sources.size(); ++k)
-        sum += receiver.area * element_to_element(receiver, ends[k], contours[k], points);
+        sum += receiver.area * element_to_element(receiver, ends[k], points);
     }
     benchmark::DoNotOptimize(sum);
   }

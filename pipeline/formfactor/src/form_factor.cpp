@@ -77,23 +77,6 @@ inline double angle_of(double s, double c) {
   return c < 0 ? kPi - angle : angle;
 }
 
-// Σ_k β_k n·(R_k × R_{k+1}) / |R_k × R_{k+1}| over the m ≤ 8 corners R (relative to the point), in
-// edge order. (Two edges at a time with SSE2 gave the same bits and no speed: 66-70 ns a call against
-// 59-66 ns one at a time, a benchmark of 2 M calls, 2026-11-29.)
-double contour_sum(const double* rx, const double* ry, const double* rz, int m, const Vec3& n) {
-  double sum = 0.0;
-  for (int k = 0; k < m; ++k) {
-    const int j = k + 1 == m ? 0 : k + 1;
-    const Vec3 r0{rx[k], ry[k], rz[k]}, r1{rx[j], ry[j], rz[j]};
-    const Vec3 c = cross(r0, r1);
-    const double cl = length(c);
-    if (cl <= 0) continue;  // p on the edge's line: the edge subtends no angle
-    const double beta = angle_of(cl, dot(r0, r1));
-    sum += beta * dot(n, c) / cl;
-  }
-  return sum;
-}
-
 }  // namespace
 
 double vector_angle(double s, double c) { return angle_of(s, c); }
@@ -145,8 +128,20 @@ double point_to_polygon(const Vec3& p, const Vec3& n, const ContourSource& sourc
     }
   }
   if (m < 3) return 0.0;
+  // One edge at a time: two at a time (SSE2) gave the same bits and no speed (docs/performance.md,
+  // "What a link costs besides its rays").
+  double sum = 0.0;
+  for (int k = 0; k < m; ++k) {
+    const int j = k + 1 == m ? 0 : k + 1;
+    const Vec3 r0{rx[k], ry[k], rz[k]}, r1{rx[j], ry[j], rz[j]};
+    const Vec3 c = cross(r0, r1);
+    const double cl = length(c);
+    if (cl <= 0) continue;  // p on the edge's line: the edge subtends no angle
+    const double beta = angle_of(cl, dot(r0, r1));
+    sum += beta * dot(n, c) / cl;
+  }
   // The sign of the sum follows the winding seen from p; the form factor is its magnitude.
-  return std::fabs(contour_sum(rx, ry, rz, m, n)) / (2.0 * kPi);
+  return std::fabs(sum) / (2.0 * kPi);
 }
 
 QuadraturePoints quadrature_points(const Polygon& r, int order) {
@@ -176,7 +171,8 @@ int quadrature_order(double distance, double receiver_size, double source_size) 
 }
 
 ElementEnd::ElementEnd(const Polygon& p)
-    : poly(p), normal(polygon_normal(p)), centroid(polygon_centroid(p)), area(polygon_area(p)), size(std::sqrt(area)) {}
+    : poly(p), normal(polygon_normal(p)), centroid(polygon_centroid(p)), area(polygon_area(p)), size(std::sqrt(area)),
+      contour(p) {}
 
 const QuadraturePoints& ReceiverPoints::of_order(int order) {
   const size_t k = size_t(std::clamp(order, 1, 8) - 1);
@@ -187,15 +183,14 @@ const QuadraturePoints& ReceiverPoints::of_order(int order) {
   return points_[k];
 }
 
-double element_to_element(const ElementEnd& receiver, const ElementEnd& source, const ContourSource& contour,
-                          ReceiverPoints& points) {
+double element_to_element(const ElementEnd& receiver, const ElementEnd& source, ReceiverPoints& points) {
   if (receiver.area <= 0) return 0.0;
   const double distance = length(receiver.centroid - source.centroid);
   const int order = quadrature_order(distance, receiver.size, source.size);
   double sum = 0.0;
   for (const QuadraturePoint& q : points.of_order(order)) {
     if (dot(q.position - source.poly.v[0], source.normal) <= 0) continue;  // behind the source: sees its back
-    sum += q.weight * point_to_polygon(q.position, receiver.normal, contour);
+    sum += q.weight * point_to_polygon(q.position, receiver.normal, source.contour);
   }
   return sum / receiver.area;
 }
@@ -203,7 +198,7 @@ double element_to_element(const ElementEnd& receiver, const ElementEnd& source, 
 double element_to_element(const Polygon& receiver, const Polygon& source) {
   const ElementEnd r(receiver), s(source);
   ReceiverPoints points(receiver);
-  return element_to_element(r, s, ContourSource(source), points);
+  return element_to_element(r, s, points);
 }
 
 }  // namespace walkrad

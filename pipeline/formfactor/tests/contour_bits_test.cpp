@@ -99,7 +99,7 @@ TEST(ContourBits, PreparedElementsGiveThePairsOwnBits) {
       Polygon source = random_polygon(rng, s % 2 == 1);
       if (s == 5) source = receiver;  // touching itself: the highest order
       const double want = pair_from_scratch(receiver, source);
-      const double got = element_to_element(r, ElementEnd(source), ContourSource(source), points);
+      const double got = element_to_element(r, ElementEnd(source), points);
       ASSERT_TRUE(same_bits(want, got)) << "trial " << trial << " source " << s;
       ASSERT_TRUE(same_bits(want, element_to_element(receiver, source))) << "trial " << trial << " source " << s;
     }

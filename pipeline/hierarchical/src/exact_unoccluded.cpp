@@ -51,13 +51,9 @@ double Solver::exact_unoccluded(const HNode& ri, const HNode& sj) const {
   faces(sj, ss);
   // Each source prepared once, each receiver's quadrature points once per order: the same bits as
   // element_to_element(polygon, polygon) pair by pair.
-  struct Source {
-    ElementEnd end;
-    ContourSource contour;
-  };
-  thread_local std::vector<Source> sources;
+  thread_local std::vector<ElementEnd> sources;
   sources.clear();
-  for (const Face& b : ss) sources.push_back({ElementEnd(*b.p), ContourSource(*b.p)});
+  for (const Face& b : ss) sources.emplace_back(*b.p);
   double sum = 0;
   for (const Face& a : rs) {
     const ElementEnd receiver(*a.p);
@@ -66,7 +62,7 @@ double Solver::exact_unoccluded(const HNode& ri, const HNode& sj) const {
       const Face& b = ss[k];
       if (a.p->v == b.p->v && a.p->count == b.p->count) continue;
       if (behind(a, b) || behind(b, a)) continue;
-      sum += receiver.area * element_to_element(receiver, sources[k].end, sources[k].contour, points);
+      sum += receiver.area * element_to_element(receiver, sources[k], points);
     }
   }
   return ri.area > 0 ? sum / ri.area : 0.0;

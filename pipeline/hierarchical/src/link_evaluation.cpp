@@ -98,7 +98,7 @@ void Solver::store_links(const std::vector<Pending>& list) {
 void Solver::take_requests() {
   if (s_.check_limits) s_.check_limits("link evaluation", requests_.size() * sizeof(Pending));
   pending_.reserve(requests_.size());
-  for (const LinkRequest& r : requests_) pending_.emplace_back(r.receiver, r.source, r.need_rays, r.samples, r.volume);
+  for (const LinkRequest& r : requests_) pending_.emplace_back(r);
   note_link_memory();  // both lists held: the round's peak
   std::vector<LinkRequest>().swap(requests_);
 }

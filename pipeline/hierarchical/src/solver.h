@@ -22,6 +22,16 @@
 
 namespace walkrad::hierarchical_detail {
 
+// A link the refinement asks for, as it asks (Pending's first fields): the round's list grows by
+// doubling while the refinement runs, a quarter of the bytes a Pending would copy and fault in, and is
+// made into Pendings once, at their exact count, when the round's links are evaluated (take_requests).
+struct LinkRequest {
+  uint32_t receiver, source;
+  int32_t samples;
+  bool need_rays, volume;
+};
+static_assert(sizeof(LinkRequest) == 16, "LinkRequest's size changed: update docs/performance.md");
+
 // A link found by the refinement, waiting for its form factor (evaluated in parallel).
 // 64 bytes: a round's list is held beside every link while it is evaluated (80 with 64-bit counts;
 // a link casts at most 8 × its samples, and those are at most kHiddenRecast × 65535: 32 bits hold it).
@@ -37,20 +47,10 @@ struct Pending {
   std::array<uint16_t, 4> seen = {0, 0, 0, 0};
   uint32_t rays = 0, grid_segments = 0;
 
-  Pending(uint32_t receiver_, uint32_t source_, bool need_rays_, int samples_, bool volume_)
-      : receiver(receiver_), source(source_), samples(samples_), need_rays(need_rays_), volume(volume_) {}
+  explicit Pending(const LinkRequest& r)
+      : receiver(r.receiver), source(r.source), samples(r.samples), need_rays(r.need_rays), volume(r.volume) {}
 };
 static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
-
-// A link the refinement asks for, as it asks (Pending's first fields): the round's list grows by
-// doubling while the refinement runs, a quarter of the bytes a Pending would copy and fault in, and is
-// made into Pendings once, at their exact count, when the round's links are evaluated (take_requests).
-struct LinkRequest {
-  uint32_t receiver, source;
-  int32_t samples;
-  bool need_rays, volume;
-};
-static_assert(sizeof(LinkRequest) == 16, "LinkRequest's size changed: update docs/performance.md");
 
 // A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
 // divided_solve.cpp): whether the receiver splits, and every link it does not keep (all of them when it
@@ -310,7 +310,7 @@ class Solver {
     if (here(r.receiver)) requests_.push_back(r);
     else ++elsewhere_;
   }
-  uint64_t new_link_count() const { return requests_.size() + pending_.size() + elsewhere_; }
+  uint64_t new_link_count() const { return requests_.size() + elsewhere_; }  // between refinement and evaluation
   // The round's requests made into pending_ (at its exact size), the requests given back.
   void take_requests();
 

@@ -70,7 +70,6 @@ struct QuadraturePoints {
   int count = 0;
   Iterator begin() const { return {point}; }
   Iterator end() const { return {point + count}; }
-  size_t size() const { return size_t(count); }
 };
 QuadraturePoints quadrature_points(const Polygon& receiver, int order);
 
@@ -83,13 +82,14 @@ int quadrature_order(double distance, double receiver_size, double source_size);
 double element_to_element(const Polygon& receiver, const Polygon& source);
 
 // The same, to the bit, for one polygon met against many (a cluster's exact unoccluded form factor,
-// pair by pair): each end's normal, area and centroid computed once, and the receiver's quadrature
-// points once per order (ReceiverPoints) instead of once per pair.
+// pair by pair): each end's normal, area, centroid and contour computed once, and the receiver's
+// quadrature points once per order (ReceiverPoints) instead of once per pair.
 struct ElementEnd {
   explicit ElementEnd(const Polygon& p);
   const Polygon& poly;
   Vec3 normal, centroid;
-  double area, size;  // size: √area, as quadrature_order takes it
+  double area, size;      // size: √area, as quadrature_order takes it
+  ContourSource contour;  // read where this end is the source
 };
 class ReceiverPoints {
  public:
@@ -101,7 +101,6 @@ class ReceiverPoints {
   QuadraturePoints points_[8];
   bool have_[8] = {};
 };
-double element_to_element(const ElementEnd& receiver, const ElementEnd& source, const ContourSource& contour,
-                          ReceiverPoints& points);
+double element_to_element(const ElementEnd& receiver, const ElementEnd& source, ReceiverPoints& points);
 
 }  // namespace walkrad
