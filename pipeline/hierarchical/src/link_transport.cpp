@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -64,7 +65,9 @@ template <size_t N>
 struct Delivery {
   std::vector<std::array<Vec3, N>> H;
   std::vector<double> row;
-  std::vector<std::array<DirectionalIrradiance, N>> cube;  // by cluster: what it gathered by direction
+  // The clusters from the root to the one being read, each with what it and those above it gathered
+  // by direction (delivered's scratch).
+  std::vector<std::pair<uint32_t, std::array<DirectionalIrradiance, N>>> path;
 };
 
 // What a link with Link::seen takes from its source's parts, as the solve takes it.
@@ -82,21 +85,34 @@ std::array<Vec3, N> seen_value(const Hierarchy& h, const Link& l, const HNode& r
 template <size_t N, class V>
 void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   const std::vector<HNode>& nodes = h.nodes();
-  size_t clusters = 0;
-  for (size_t k = 0; k < nodes.size(); ++k)
-    if (nodes[k].cluster) clusters = k + 1;
-  std::vector<std::array<DirectionalIrradiance, N>>& cube = d.cube;
-  cube.assign(clusters, std::array<DirectionalIrradiance, N>{});
   d.H.assign(nodes.size(), std::array<Vec3, N>{});
   d.row.assign(nodes.size(), 0.0);
-  for (size_t k = 0; k < clusters; ++k) {  // the clusters, parents first
+  // The clusters, parents first, each with its parent's gather and its own links'. Hierarchy makes
+  // them in preorder (a cluster's subtree whole before its sibling's, its element roots right after
+  // it), all before the first element split: only the path from the root is held, and an element root
+  // takes what reaches it from the cluster above as it is read (a cube per cluster was 0.2 GB of
+  // fresh pages a call on the 150-room level).
+  auto& path = d.path;
+  path.clear();
+  const size_t made = std::min(nodes.size(), h.cluster_count() + h.scene().polygons.size());
+  for (size_t k = 0; k < made; ++k) {
     const HNode& n = nodes[k];
-    if (!n.cluster) continue;
-    if (n.parent >= 0) cube[k] = cube[size_t(n.parent)];
+    if (!n.cluster && n.depth != 0) continue;
+    while (!path.empty() && int64_t(path.back().first) != int64_t(n.parent)) path.pop_back();
+    if ((n.parent >= 0) == path.empty()) throw std::logic_error("link transport: the clusters are not in preorder");
+    if (!n.cluster) {  // an element root: what its ancestors' links deliver to its normal
+      const std::array<DirectionalIrradiance, N>& above = path.back().second;
+      for (size_t m = 0; m < N; ++m) d.H[k][m] = above[m].at(n.normal);
+      d.row[k] = above[0].row(n.normal);
+      continue;
+    }
+    const std::array<DirectionalIrradiance, N> above = path.empty() ? std::array<DirectionalIrradiance, N>{} : path.back().second;
+    path.emplace_back(uint32_t(k), above);  // (copied first: the vector may move as it grows)
+    std::array<DirectionalIrradiance, N>& mine = path.back().second;
     for (const Link& l : n.links) {
       const Vec3 u = link_direction(n, h[l.source]);
       const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
-      for (size_t m = 0; m < N; ++m) cube[k][m].add(n, u, l.F, v[m]);
+      for (size_t m = 0; m < N; ++m) mine[m].add(n, u, l.F, v[m]);
     }
   }
   // Each input polygon's element tree depends only on the clusters above it: the trees in parallel,
@@ -113,13 +129,7 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
     for (size_t p = r.begin(); p != r.end(); ++p) {
       if (!h.owners().holds_polygon(uint32_t(p))) continue;  // its rank's (link_owners.h)
       const uint32_t root = h.polygon_root(uint32_t(p));
-      const HNode& top = nodes[root];
-      Item first{root, {}, 0.0};
-      if (top.parent >= 0 && nodes[size_t(top.parent)].cluster) {
-        for (size_t m = 0; m < N; ++m) first.H[m] = cube[size_t(top.parent)][m].at(top.normal);
-        first.row = cube[size_t(top.parent)][0].row(top.normal);
-      }
-      stack.assign(1, first);
+      stack.assign(1, Item{root, d.H[root], d.row[root]});  // what the clusters above deliver (set above)
       while (!stack.empty()) {
         Item it = stack.back();
         stack.pop_back();
@@ -180,21 +190,21 @@ struct Values {
 template <size_t N>
 struct TransportBuffers {
   std::vector<Values<N>> sent;
-  std::array<std::vector<std::array<Vec3, 6>>, N> facing;
+  std::array<std::vector<std::array<Vec3, 6>>, N> facing;  // by cluster
   Delivery<N> delivery;
-  std::array<std::vector<Vec3>, N> out;
 };
 
-// T x for N vectors x at once, x given at the leaves (indexed by node): zero except at leaf elements.
-// Returns t.out.
-template <size_t N>
-const std::array<std::vector<Vec3>, N>& transport(const Hierarchy& h, const std::array<const std::vector<Vec3>*, N>& x,
-                                                  TransportBuffers<N>& t) {
+// T x for N vectors x at once, x(leaf) the N values at a leaf element (zero elsewhere). Returns the
+// delivery: leaf_irradiance(leaf, H[k][m], row[k]) is (T x_m) at leaf k. Only the node-sized arrays
+// the walk needs are held (each fresh page a fault: docs/performance.md).
+template <size_t N, class X>
+const Delivery<N>& transport(const Hierarchy& h, X x, TransportBuffers<N>& t) {
   const std::vector<HNode>& nodes = h.nodes();
   std::vector<Values<N>>& sent = t.sent;
-  area_means(h, sent, [&](const HNode& n, size_t k) {
+  area_means(h, sent, [&](const HNode& n, size_t) {
+    const std::array<Vec3, N> at = x(n);
     Values<N> r;
-    for (size_t m = 0; m < N; ++m) r.v[m] = (*x[m])[k] * n.send;
+    for (size_t m = 0; m < N; ++m) r.v[m] = at[m] * n.send;
     return r;
   });
   // A cluster sends by direction (cluster_radiosity.h), as the solve's gather takes it.
@@ -206,16 +216,10 @@ const std::array<std::vector<Vec3>, N>& transport(const Hierarchy& h, const std:
     if (!s.cluster) return sent[source].v;
     const Vec3 u = normalize(receiver.center - s.center);
     std::array<Vec3, N> v;
-    for (size_t m = 0; m < N; ++m) v[m] = radiosity_towards(s, facing[m][source], u, sent[source].v[m]);
+    for (size_t m = 0; m < N; ++m) v[m] = radiosity_towards(s, facing[m][s.tree_node], u, sent[source].v[m]);
     return v;
   }, d);
-  std::array<std::vector<Vec3>, N>& out = t.out;
-  for (size_t m = 0; m < N; ++m) {
-    out[m].assign(nodes.size(), Vec3{});
-    for (size_t k = 0; k < nodes.size(); ++k)
-      if (is_leaf_element(nodes[k])) out[m][k] = leaf_irradiance(nodes[k], d.H[k][m], d.row[k]);
-  }
-  return out;
+  return d;
 }
 
 // Row sums of every leaf, Σ F s̄ along its path as the solve pushes it, with send factors send(node).
@@ -378,7 +382,6 @@ uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row, const std::vector
 }
 
 struct CorrectionBuffers::Held {
-  std::vector<Vec3> b, v;
   TransportBuffers<2> t;
 };
 
@@ -389,25 +392,19 @@ double aggregation_correction(Hierarchy& h, double floor, double* level, Correct
   std::optional<CorrectionBuffers> own;
   CorrectionBuffers::Held& held = *(buffers ? buffers : &own.emplace())->held;
   std::vector<HNode>& nodes = h.nodes();
-  std::vector<Vec3>& b = held.b;
-  std::vector<Vec3>& v = held.v;
-  b.assign(nodes.size(), Vec3{});
-  v.assign(nodes.size(), Vec3{});
-  for (size_t k = 0; k < nodes.size(); ++k)
-    if (is_leaf_element(nodes[k])) {
-      b[k] = nodes[k].B;
-      v[k] = nodes[k].B - nodes[k].emission - mul(nodes[k].rho, nodes[k].D);
-    }
-  const std::array<std::vector<Vec3>, 2>& t = transport<2>(h, {&b, &v}, held.t);  // one walk over the links for both
-  const std::vector<Vec3>& tb = t[0];
-  const std::vector<Vec3>& tv = t[1];
+  // At a leaf, b = B and v = B − E − ρD (what the sweeps reflected), read from the node where needed
+  // (v from its B before this call changes it): two node-sized arrays fewer.
+  const auto reflected = [](const HNode& n) { return n.B - n.emission - mul(n.rho, n.D); };
+  const Delivery<2>& d = transport<2>(h, [&](const HNode& n) { return std::array<Vec3, 2>{n.B, reflected(n)}; }, held.t);
   Vec3 num, den, total;
   for (size_t k = 0; k < nodes.size(); ++k) {  // sequential: a fixed order of sums
     const HNode& n = nodes[k];
     if (!is_leaf_element(n)) continue;
-    num += (n.emission + mul(n.rho, tb[k] + n.D) - n.B) * n.area;
-    den += (v[k] - mul(n.rho, tv[k])) * n.area;
-    total += v[k] * n.area;
+    const Vec3 tb = leaf_irradiance(n, d.H[k][0], d.row[k]), tv = leaf_irradiance(n, d.H[k][1], d.row[k]);
+    const Vec3 v = reflected(n);
+    num += (n.emission + mul(n.rho, tb + n.D) - n.B) * n.area;
+    den += (v - mul(n.rho, tv)) * n.area;
+    total += v * n.area;
   }
   Vec3 c;
   for (int k = 0; k < 3; ++k)
@@ -417,7 +414,7 @@ double aggregation_correction(Hierarchy& h, double floor, double* level, Correct
   for (size_t k = 0; k < nodes.size(); ++k) {
     HNode& n = nodes[k];
     if (!is_leaf_element(n)) continue;
-    const Vec3 next = n.B + mul(c, v[k]);
+    const Vec3 next = n.B + mul(c, reflected(n));
     const double scale = std::max(max_component(next), floor);
     if (scale > 0) largest = std::max(largest, max_component(abs3(next - n.B)) / scale);
     n.B = next;

@@ -202,8 +202,8 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   h_[i].Bt = area > 0 ? sent / area : Vec3{};
   // What the cluster sends by direction, from its surfaces as they now are: links from it read this
   // sweep's radiosity, as links from elements do.
-  if (s_.gauss_seidel && n.cluster && i < facing_bt_.size())
-    facing_bt_[i] = facing_from_children(h_, i, facing_bt_, [&](uint32_t k) { return h_[k].Bt; });
+  if (s_.gauss_seidel && n.cluster && n.tree_node < facing_bt_.size())
+    facing_bt_[n.tree_node] = facing_from_children(h_, i, facing_bt_, [&](uint32_t k) { return h_[k].Bt; });
   return h_[i].B;
 }
 

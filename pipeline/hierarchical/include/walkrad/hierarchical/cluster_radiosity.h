@@ -8,6 +8,7 @@
 // HNode::facing holds the areas alone).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -16,7 +17,7 @@
 
 namespace walkrad {
 
-// One cluster's sum from its children, the last first: a child cluster's own sums (facing[child]), an
+// One cluster's sum from its children, the last first: a child cluster's own sums (facing[its tree_node]), an
 // element root's facing areas × value(root). A Gauss-Seidel sweep takes it again for a cluster whose
 // surfaces it has just updated (solve_sweep.cpp).
 template <class Value>
@@ -28,7 +29,7 @@ std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, c
     const uint32_t c = h.child(n, k);
     const HNode& child = h[c];
     if (child.cluster) {
-      for (size_t a = 0; a < 6; ++a) out[a] += facing[c][a];
+      for (size_t a = 0; a < 6; ++a) out[a] += facing[child.tree_node][a];
     } else {  // an element root: its leaves share its normal
       const Vec3 v = value(c);
       for (size_t a = 0; a < 6; ++a) out[a] += v * double(child.facing[a]);
@@ -37,19 +38,17 @@ std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, c
   return out;
 }
 
-// By node, up to the last cluster (clusters only are read): for a cluster, Σ over its element roots of
-// facing[a] × value(root), value(k) node k's radiosity (an element root's: its leaves' area mean).
-// Into `out`, whose memory is kept: a sweep takes them again every time (fresh pages are a fault each).
+// By cluster (HNode::tree_node, Hierarchy::cluster_count()): Σ over its element roots of facing[a] ×
+// value(root), value(k) node k's radiosity (an element root's: its leaves' area mean). Into `out`, whose
+// memory is kept: a sweep takes them again every time (fresh pages are a fault each).
 template <class Value>
 void facing_radiosity(const Hierarchy& h, Value value, std::vector<std::array<Vec3, 6>>& out) {
   const std::vector<HNode>& nodes = h.nodes();
-  size_t clusters = 0;
-  for (size_t k = 0; k < nodes.size(); ++k)
-    if (nodes[k].cluster) clusters = k + 1;
-  out.assign(clusters, std::array<Vec3, 6>{});
+  out.resize(h.cluster_count());  // every entry is set below
   // Children come after their parents: from the end, each cluster is complete before its parent takes it.
-  for (size_t k = clusters; k-- > 0;)
-    if (nodes[k].cluster) out[k] = facing_from_children(h, uint32_t(k), out, value);
+  // Clusters are made before any element is split: none lies past the first cluster_count() + polygons.
+  for (size_t k = std::min(nodes.size(), h.cluster_count() + h.scene().polygons.size()); k-- > 0;)
+    if (nodes[k].cluster) out[nodes[k].tree_node] = facing_from_children(h, uint32_t(k), out, value);
 }
 
 template <class Value>
@@ -75,7 +74,9 @@ Vec3 link_radiosity_towards(const Hierarchy& h, const Link& l, const Vec3& at, c
   Vec3 out;
   for_each_part(h, l, [&](uint32_t node, double w) {
     const HNode& p = h[node];
-    out += (p.cluster && node < facing.size() ? radiosity_towards(p, facing[node], normalize(at - p.center), sent(node)) : sent(node)) * w;
+    out += (p.cluster && p.tree_node < facing.size() ? radiosity_towards(p, facing[p.tree_node], normalize(at - p.center), sent(node))
+                                                     : sent(node)) *
+           w;
   });
   return out;
 }
