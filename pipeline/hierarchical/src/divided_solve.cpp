@@ -123,7 +123,7 @@ void Solver::apply_plan(uint32_t i, const RemotePlan& plan, std::vector<std::vec
 void Solver::evaluate_divided(IterationStats& is) {
   take_requests();
   // The cluster receivers' links (on every rank) apart from this rank's receivers'.
-  std::vector<Pending> shared;
+  PendingList shared;
   size_t kept = 0;
   for (size_t k = 0; k < pending_.size(); ++k) {
     if (h_[pending_[k].receiver].cluster) shared.push_back(pending_[k]);
@@ -152,7 +152,7 @@ void Solver::evaluate_divided(IterationStats& is) {
   add_counts(counts, is);
   store_links(shared);
   store_links(pending_);
-  std::vector<Pending>().swap(pending_);
+  PendingList().swap(pending_);
   elsewhere_ = 0;
 }
 

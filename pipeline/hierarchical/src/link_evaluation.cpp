@@ -47,7 +47,7 @@ void Solver::compute_missing_direct() {
   direct_for(missing);
 }
 
-void Solver::evaluate_range(std::vector<Pending>& list, size_t begin, size_t end) const {
+void Solver::evaluate_range(PendingList& list, size_t begin, size_t end) const {
   tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RayScene::Segment> segments;
     std::vector<double> visible, weights;
@@ -55,7 +55,7 @@ void Solver::evaluate_range(std::vector<Pending>& list, size_t begin, size_t end
   });
 }
 
-Solver::LinkCounts Solver::count_links(const std::vector<Pending>& list) const {
+Solver::LinkCounts Solver::count_links(const PendingList& list) const {
   LinkCounts c{};
   for (const Pending& p : list) {
     c[kRays] += p.rays;
@@ -77,7 +77,7 @@ void Solver::add_counts(const LinkCounts& c, IterationStats& is) {
   stats_.links += uint64_t(c[kKept]);
 }
 
-void Solver::store_links(const std::vector<Pending>& list) {
+void Solver::store_links(const PendingList& list) {
   // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
   // up to half of itself unused (docs/performance.md, "Links held at their size").
   std::vector<uint32_t> added(h_.nodes().size(), 0);
@@ -121,7 +121,7 @@ void Solver::evaluate_pending(IterationStats& is) {
   share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
   add_counts(count_links(pending_), is);
   store_links(pending_);
-  std::vector<Pending>().swap(pending_);  // its capacity too: the largest round's list is not kept
+  PendingList().swap(pending_);  // its capacity too: the largest round's list is not kept
 }
 
 void Solver::visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const {

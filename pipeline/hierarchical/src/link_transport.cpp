@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "walkrad/core/huge_pages.h"
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/link_owners.h"
@@ -26,8 +27,9 @@ Vec3 abs3(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z
 
 // Area mean over each node's leaf elements of value(leaf) (clusters without elements: 0). Nodes are
 // stored parents first, so a reverse pass sees every child before its parent.
-template <class T, class F>
-void area_means(const Hierarchy& h, std::vector<T>& mean, F value) {
+template <class Vector, class F>
+void area_means(const Hierarchy& h, Vector& mean, F value) {
+  using T = typename Vector::value_type;
   const std::vector<HNode>& nodes = h.nodes();
   mean.assign(nodes.size(), T{});
   for (size_t k = nodes.size(); k-- > 0;) {
@@ -61,10 +63,11 @@ std::vector<double> path_sums(const Hierarchy& h, const std::vector<double>& per
 // adds its own links'. H: Σ F · value(source, receiver), for N quantities at once (value returns N of them:
 // one walk over the links for all; each sum in the order a single one would take); row: Σ F.
 // Parents come first in the node array.
+// (On huge pages: made afresh every round, core/huge_pages.h.)
 template <size_t N>
 struct Delivery {
-  std::vector<std::array<Vec3, N>> H;
-  std::vector<double> row;
+  HugeVector<std::array<Vec3, N>> H;
+  HugeVector<double> row;
   // The clusters from the root to the one being read, each with what it and those above it gathered
   // by direction (delivered's scratch).
   std::vector<std::pair<uint32_t, std::array<DirectionalIrradiance, N>>> path;
@@ -189,8 +192,8 @@ struct Values {
 // What transport fills; kept between calls by aggregation_correction's callers.
 template <size_t N>
 struct TransportBuffers {
-  std::vector<Values<N>> sent;
-  std::array<std::vector<std::array<Vec3, 6>>, N> facing;  // by cluster
+  HugeVector<Values<N>> sent;
+  std::array<HugeVector<std::array<Vec3, 6>>, N> facing;  // by cluster
   Delivery<N> delivery;
 };
 
@@ -200,7 +203,7 @@ struct TransportBuffers {
 template <size_t N, class X>
 const Delivery<N>& transport(const Hierarchy& h, X x, TransportBuffers<N>& t) {
   const std::vector<HNode>& nodes = h.nodes();
-  std::vector<Values<N>>& sent = t.sent;
+  HugeVector<Values<N>>& sent = t.sent;
   area_means(h, sent, [&](const HNode& n, size_t) {
     const std::array<Vec3, N> at = x(n);
     Values<N> r;
@@ -208,7 +211,7 @@ const Delivery<N>& transport(const Hierarchy& h, X x, TransportBuffers<N>& t) {
     return r;
   });
   // A cluster sends by direction (cluster_radiosity.h), as the solve's gather takes it.
-  std::array<std::vector<std::array<Vec3, 6>>, N>& facing = t.facing;
+  std::array<HugeVector<std::array<Vec3, 6>>, N>& facing = t.facing;
   for (size_t m = 0; m < N; ++m) facing_radiosity(h, [&](uint32_t k) { return sent[k].v[m]; }, facing[m]);
   Delivery<N>& d = t.delivery;
   delivered<N>(h, [&](uint32_t source, const HNode& receiver) {
@@ -225,7 +228,7 @@ const Delivery<N>& transport(const Hierarchy& h, X x, TransportBuffers<N>& t) {
 // Row sums of every leaf, Σ F s̄ along its path as the solve pushes it, with send factors send(node).
 template <class F>
 std::vector<double> row_sums(const Hierarchy& h, F send) {
-  std::vector<double> mean;
+  HugeVector<double> mean;
   area_means(h, mean, [&](const HNode& n, size_t) { return send(n); });
   Delivery<1> d;
   delivered<1>(h, [&](uint32_t source, const HNode&) {

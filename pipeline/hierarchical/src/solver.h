@@ -17,6 +17,7 @@
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/transmission.h"
+#include "walkrad/core/huge_pages.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/visibility/shaft.h"
 
@@ -50,6 +51,9 @@ struct Pending {
   explicit Pending(const LinkRequest& r)
       : receiver(r.receiver), source(r.source), samples(r.samples), need_rays(r.need_rays), volume(r.volume) {}
 };
+// A round's list, made afresh each round: on huge pages (core/huge_pages.h; 0.25 M of the 150-room
+// level's page faults were this list's).
+using PendingList = HugeVector<Pending>;
 static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
 
 // A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
@@ -352,17 +356,17 @@ class Solver {
   // Form factors of the new links, in parallel: each link draws from its own random stream.
   void evaluate_pending(IterationStats& is);
   // list[begin, end) evaluated in parallel.
-  void evaluate_range(std::vector<Pending>& list, size_t begin, size_t end) const;
+  void evaluate_range(PendingList& list, size_t begin, size_t end) const;
   // A wholly hidden link stays while it may still see something.
   static bool kept(const Pending& p) { return p.F > 0 || p.sigma > 0; }
   // What a list of evaluated links adds to the statistics, as integers (a divided solve sums each
   // rank's: any order), and the statistics so added.
   enum LinkCount { kRays, kVolume, kGridSegments, kExact, kUnoccluded, kMonteCarlo, kKept, kLinkCounts };
   using LinkCounts = std::array<int64_t, kLinkCounts>;
-  LinkCounts count_links(const std::vector<Pending>& list) const;
+  LinkCounts count_links(const PendingList& list) const;
   void add_counts(const LinkCounts& counts, IterationStats& is);
   // The kept links of an evaluated list put at their receivers, each receiver's list grown once.
-  void store_links(const std::vector<Pending>& list);
+  void store_links(const PendingList& list);
 
   // What of each segment arrives: 0 or 1 from Embree (against the solid scene when the link sees
   // through volumes), times the transmittance through the extinction grid.
@@ -461,7 +465,7 @@ class Solver {
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
   std::vector<LinkRequest> requests_;  // the round's new links, as the refinement asks for them
-  std::vector<Pending> pending_;       // the same, to evaluate (take_requests)
+  PendingList pending_;       // the same, to evaluate (take_requests)
   // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
   // and the lists they filter (a deque: a list stays where it is while others are added).
   std::vector<PairTask> queued_pairs_;

@@ -98,8 +98,8 @@ void all_gather_blocks(void* data, size_t size, const std::vector<size_t>& block
 
 // v[blocks[r], blocks[r + 1]) from rank r to every rank (this rank's block is already in v). T is
 // trivially copyable; with one rank nothing happens.
-template <class T>
-void share_blocks(std::vector<T>& v, const std::vector<size_t>& blocks) {
+template <class T, class Allocator>
+void share_blocks(std::vector<T, Allocator>& v, const std::vector<size_t>& blocks) {
   static_assert(std::is_trivially_copyable_v<T>);
   if (blocks.back() != v.size()) throw std::runtime_error("share_blocks: the blocks do not cover the list");
   all_gather_blocks(v.data(), sizeof(T), blocks);

@@ -20,9 +20,8 @@ namespace walkrad {
 // One cluster's sum from its children, the last first: a child cluster's own sums (facing[its tree_node]), an
 // element root's facing areas × value(root). A Gauss-Seidel sweep takes it again for a cluster whose
 // surfaces it has just updated (solve_sweep.cpp).
-template <class Value>
-std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, const std::vector<std::array<Vec3, 6>>& facing,
-                                         Value value) {
+template <class Facing, class Value>
+std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, const Facing& facing, Value value) {
   std::array<Vec3, 6> out{};
   const HNode& n = h[cluster];
   for (uint32_t k = n.child_count; k-- > 0;) {
@@ -41,8 +40,8 @@ std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, c
 // By cluster (HNode::tree_node, Hierarchy::cluster_count()): Σ over its element roots of facing[a] ×
 // value(root), value(k) node k's radiosity (an element root's: its leaves' area mean). Into `out`, whose
 // memory is kept: a sweep takes them again every time (fresh pages are a fault each).
-template <class Value>
-void facing_radiosity(const Hierarchy& h, Value value, std::vector<std::array<Vec3, 6>>& out) {
+template <class Value, class Facing>  // Facing: a vector of std::array<Vec3, 6>, of any allocator
+void facing_radiosity(const Hierarchy& h, Value value, Facing& out) {
   const std::vector<HNode>& nodes = h.nodes();
   out.resize(h.cluster_count());  // every entry is set below
   // Children come after their parents: from the end, each cluster is complete before its parent takes it.
