@@ -93,8 +93,8 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   // The clusters, parents first, each with its parent's gather and its own links'. Hierarchy makes
   // them in preorder (a cluster's subtree whole before its sibling's, its element roots right after
   // it), all before the first element split: only the path from the root is held, and an element root
-  // takes what reaches it from the cluster above as it is read (a cube per cluster was 0.2 GB of
-  // fresh pages a call on the 150-room level).
+  // takes what reaches it from the cluster above as it is read (a cube kept for every cluster was one
+  // more array of fresh pages each call: docs/performance.md).
   auto& path = d.path;
   path.clear();
   const size_t made = std::min(nodes.size(), h.cluster_count() + h.scene().polygons.size());

@@ -124,8 +124,8 @@ class Hierarchy {
   const HNode& operator[](uint32_t i) const { return nodes_[i]; }
   uint32_t root() const { return 0; }
   // Clusters are numbered 0 .. cluster_count() − 1 by HNode::tree_node (every ClusterTree node is one):
-  // arrays kept for clusters alone are indexed so, not by node (the first 1.1 M nodes of the 150-room
-  // level hold its 0.5 M clusters).
+  // arrays kept for clusters alone are indexed so, not by node (clusters are made interleaved with the
+  // input polygons' root elements, so the last cluster's node index is near clusters + polygons).
   size_t cluster_count() const { return tree_.nodes.size(); }
   uint32_t child(const HNode& n, uint32_t k) const { return children_[n.child_begin + k]; }
 
