@@ -21,10 +21,8 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
   if (divided_) h_.owners() = divide_polygons(h_.tree(), ranks().size, ranks().rank);
   stats_.divided = divided_;
   // Every cluster exists from the start; only they gather by direction (192 bytes each: kept by node,
-  // a 150-room level's 748,742 element roots held 144 MB of them unused).
-  cube_slot_.assign(h_.nodes().size(), UINT32_MAX);
-  for (uint32_t i = 0; i < h_.nodes().size(); ++i)
-    if (h_[i].cluster) cube_slot_[i] = uint32_t(cube_.size()), cube_.emplace_back();
+  // a 150-room level's 748,742 element roots held 144 MB of them unused). By HNode::tree_node.
+  cube_.assign(h_.cluster_count(), DirectionalIrradiance{});
   // Punctual lights: each input polygon's direct irradiance, and how much it varies over it (the
   // elements are split for it once a solve has given the tolerances: refine_for_lights).
   if (lights()) {  // every element is an input polygon's root here

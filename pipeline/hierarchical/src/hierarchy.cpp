@@ -19,6 +19,7 @@ Hierarchy::Hierarchy(const Scene& scene, const ClusterTree& tree, bool sample_te
   nodes_.reserve(4 * tree.nodes.size() + scene.polygons.size());
   polygon_root_.assign(scene.polygons.size(), UINT32_MAX);
   if (!tree.nodes.empty()) add_cluster(0, -1);
+  made_at_start_ = nodes_.size();
 }
 
 uint32_t Hierarchy::add_element(const Polygon& shape, uint32_t polygon, int32_t parent, uint8_t depth) {

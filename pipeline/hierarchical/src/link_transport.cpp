@@ -91,14 +91,12 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   d.H.assign(nodes.size(), std::array<Vec3, N>{});
   d.row.assign(nodes.size(), 0.0);
   // The clusters, parents first, each with its parent's gather and its own links'. Hierarchy makes
-  // them in preorder (a cluster's subtree whole before its sibling's, its element roots right after
-  // it), all before the first element split: only the path from the root is held, and an element root
+  // them in preorder (Hierarchy::made_at_start()): only the path from the root is held, and an element root
   // takes what reaches it from the cluster above as it is read (a cube kept for every cluster was one
   // more array of fresh pages each call: docs/performance.md).
   auto& path = d.path;
   path.clear();
-  const size_t made = std::min(nodes.size(), h.cluster_count() + h.scene().polygons.size());
-  for (size_t k = 0; k < made; ++k) {
+  for (size_t k = 0; k < h.made_at_start(); ++k) {
     const HNode& n = nodes[k];
     if (!n.cluster && n.depth != 0) continue;
     while (!path.empty() && int64_t(path.back().first) != int64_t(n.parent)) path.pop_back();

@@ -54,22 +54,20 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
     facing_g_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt - emitted_[k]; });
   }
   // Down the cluster tree, each cluster's links added to its parent's, by direction.
-  std::vector<DirectionalIrradiance> cube, cube_g;
-  std::vector<uint32_t> slot(h.nodes().size(), UINT32_MAX);
-  for (uint32_t k = 0; k < h.nodes().size(); ++k) {  // parents first
+  std::vector<DirectionalIrradiance> cube(h.cluster_count()), cube_g(h.cluster_count());  // by tree_node
+  for (uint32_t k = 0; k < h.made_at_start(); ++k) {  // parents first
     const HNode& n = h[k];
     const int32_t parent = n.parent;
     if (n.cluster) {
-      slot[k] = uint32_t(cube.size());
-      cube.push_back(parent >= 0 ? cube[slot[size_t(parent)]] : DirectionalIrradiance{});
-      cube_g.push_back(parent >= 0 ? cube_g[slot[size_t(parent)]] : DirectionalIrradiance{});
+      const uint32_t c = n.tree_node;
+      if (parent >= 0) cube[c] = cube[h[uint32_t(parent)].tree_node], cube_g[c] = cube_g[h[uint32_t(parent)].tree_node];
       for (const Link& l : n.links) {
         const Vec3 u = link_direction(n, h[l.source]);
-        cube.back().add(n, u, l.F, sent(l, false, n.center));
-        cube_g.back().add(n, u, l.F, sent(l, true, n.center));
+        cube[c].add(n, u, l.F, sent(l, false, n.center));
+        cube_g[c].add(n, u, l.F, sent(l, true, n.center));
       }
     } else if (n.depth == 0 && parent >= 0) {
-      const uint32_t c = slot[size_t(parent)];
+      const uint32_t c = h[uint32_t(parent)].tree_node;
       H_[n.polygon] = cube[c].at(n.normal);
       Hg_[n.polygon] = cube_g[c].at(n.normal);
       row_[n.polygon] = cube[c].row(n.normal);

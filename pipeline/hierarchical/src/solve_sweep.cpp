@@ -51,7 +51,7 @@ void Solver::gather(HNode& n) {
   // One pass over the links, each source's radiosity read once. A cluster keeps its transfers by
   // direction (directional_irradiance.h); an element gives each child its share of every link
   // (Link::share). Set here so that a Jacobi sweep pushes what it gathered.
-  DirectionalIrradiance* cube = n.cluster ? &cube_[cube_slot_[size_t(&n - h_.nodes().data())]] : nullptr;
+  DirectionalIrradiance* cube = n.cluster ? &cube_[n.tree_node] : nullptr;
   if (cube) *cube = {};
   const uint32_t shared = n.cluster ? 0 : std::min<uint32_t>(n.child_count, 4);
   for (uint32_t k = 0; k < n.child_count; ++k) {
@@ -92,7 +92,7 @@ void Solver::plan_gather_blocks() {
     if (i == UINT32_MAX) {  // a cluster's subtree ends: its last item
       const uint32_t c = stack.back();
       stack.pop_back();
-      last[cube_slot_[c]] = uint32_t(items.size() - 1);
+      last[h_[c].tree_node] = uint32_t(items.size() - 1);
       continue;
     }
     const HNode& n = h_[i];
@@ -101,7 +101,7 @@ void Solver::plan_gather_blocks() {
       items.push_back(i);
       continue;
     }
-    first[cube_slot_[i]] = uint32_t(items.size());
+    first[n.tree_node] = uint32_t(items.size());
     items.push_back(i);
     stack.push_back(i);
     stack.push_back(UINT32_MAX);
@@ -118,8 +118,8 @@ void Solver::plan_gather_blocks() {
     for (size_t k = from; k < block_nodes_.size(); ++k)
       for (const Link& l : h_[block_nodes_[k]].links) {
         const HNode& source = h_[l.source];
-        const uint32_t lo = source.cluster ? first[cube_slot_[l.source]] : polygon_item[source.polygon];
-        const uint32_t hi = source.cluster ? last[cube_slot_[l.source]] : lo;
+        const uint32_t lo = source.cluster ? first[source.tree_node] : polygon_item[source.polygon];
+        const uint32_t hi = source.cluster ? last[source.tree_node] : lo;
         if (lo < t && hi >= open) return true;
       }
     return false;
@@ -185,7 +185,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   const uint32_t count = n.child_count;
   const double area = n.area;
   DirectionalIrradiance total = cube;
-  if (n.cluster) total += cube_[cube_slot_[i]];
+  if (n.cluster) total += cube_[n.tree_node];
   for (uint32_t k = 0; k < count; ++k) {
     const uint32_t c = h_.child(h_[i], k);
     const HNode& child = h_[c];

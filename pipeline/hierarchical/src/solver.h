@@ -51,10 +51,10 @@ struct Pending {
   explicit Pending(const LinkRequest& r)
       : receiver(r.receiver), source(r.source), samples(r.samples), need_rays(r.need_rays), volume(r.volume) {}
 };
+static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
 // A round's list, made afresh each round: on huge pages (core/huge_pages.h; 0.25 M of the 150-room
 // level's page faults were this list's).
 using PendingList = HugeVector<Pending>;
-static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
 
 // A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
 // divided_solve.cpp): whether the receiver splits, and every link it does not keep (all of them when it
@@ -459,13 +459,12 @@ class Solver {
   std::vector<float> spread_;     // by node: the range of its leaves' sent radiosity (measure_spread)
   std::vector<float> emitted_;    // by node: the luminance of its leaves' emission as sent, area mean (measure_spread)
   std::vector<float> weight_;     // by node: its display weight (update_scales)
-  std::vector<DirectionalIrradiance> cube_;  // by cluster (all made at the start): its own links' gather
-  std::vector<uint32_t> cube_slot_;          // by node made at the start: its cluster's place in cube_
+  std::vector<DirectionalIrradiance> cube_;  // by cluster (HNode::tree_node): its own links' gather
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;
   std::vector<LinkRequest> requests_;  // the round's new links, as the refinement asks for them
-  PendingList pending_;       // the same, to evaluate (take_requests)
+  PendingList pending_;                // the same, to evaluate (take_requests)
   // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
   // and the lists they filter (a deque: a list stays where it is while others are added).
   std::vector<PairTask> queued_pairs_;

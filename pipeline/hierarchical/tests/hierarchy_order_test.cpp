@@ -39,7 +39,8 @@ TEST(Hierarchy, ClustersAreNumberedByTreeNodeAndMadeInPreorder) {
     path.push_back(k);
   }
   for (size_t c = 0; c < seen.size(); ++c) EXPECT_EQ(seen[c], 1) << "cluster " << c;
-  EXPECT_LE(made, h.cluster_count() + scene.polygons.size());
+  EXPECT_EQ(made, h.made_at_start());
+  EXPECT_EQ(h.made_at_start(), h.cluster_count() + scene.polygons.size());
 }
 
 }  // namespace

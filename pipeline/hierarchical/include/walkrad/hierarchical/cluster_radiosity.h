@@ -8,7 +8,6 @@
 // HNode::facing holds the areas alone).
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -45,8 +44,7 @@ void facing_radiosity(const Hierarchy& h, Value value, Facing& out) {
   const std::vector<HNode>& nodes = h.nodes();
   out.resize(h.cluster_count());  // every entry is set below
   // Children come after their parents: from the end, each cluster is complete before its parent takes it.
-  // Clusters are made before any element is split: none lies past the first cluster_count() + polygons.
-  for (size_t k = std::min(nodes.size(), h.cluster_count() + h.scene().polygons.size()); k-- > 0;)
+  for (size_t k = h.made_at_start(); k-- > 0;)
     if (nodes[k].cluster) out[nodes[k].tree_node] = facing_from_children(h, uint32_t(k), out, value);
 }
 

@@ -124,9 +124,12 @@ class Hierarchy {
   const HNode& operator[](uint32_t i) const { return nodes_[i]; }
   uint32_t root() const { return 0; }
   // Clusters are numbered 0 .. cluster_count() − 1 by HNode::tree_node (every ClusterTree node is one):
-  // arrays kept for clusters alone are indexed so, not by node (clusters are made interleaved with the
-  // input polygons' root elements, so the last cluster's node index is near clusters + polygons).
+  // arrays kept for clusters alone are indexed so, not by node.
   size_t cluster_count() const { return tree_.nodes.size(); }
+  // The nodes the constructor made, [0, made_at_start()): every cluster and each input polygon's root
+  // element, in preorder of the cluster tree (a cluster, its element roots, then its children's
+  // subtrees). Split elements come after; these never move (load_state checks them).
+  size_t made_at_start() const { return made_at_start_; }
   uint32_t child(const HNode& n, uint32_t k) const { return children_[n.child_begin + k]; }
 
   // Splits an element into 4 children (no-op when it already has them). Returns false for a cluster
@@ -181,6 +184,7 @@ class Hierarchy {
   std::vector<ViewHit> hits_;
   std::vector<uint32_t> polygon_root_;        // grouped by element, each element's hits contiguous
   size_t element_count_ = 0;
+  size_t made_at_start_ = 0;
   LinkOwners owners_;
 };
 
