@@ -22,14 +22,16 @@ constexpr uint32_t kNoEmitter = UINT32_MAX;  // a cut that no emitter draws (a c
 }  // namespace
 
 SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolution& point) {
-  std::vector<MeshFace> faces;
+  // The leaves, made to their count (a million faces' array grown by doubling is copied and
+  // faulted in twice over: docs/performance.md).
   std::vector<uint32_t> leaf;
-  for (uint32_t i = 0; i < h.nodes().size(); ++i) {
-    const HNode& n = h[i];
-    if (n.cluster || n.child_count) continue;
-    faces.push_back({n.shape, n.normal, n.B, n.rho, n.area, n.polygon});
-    leaf.push_back(i);
-  }
+  for (uint32_t i = 0; i < h.nodes().size(); ++i)
+    if (!h[i].cluster && !h[i].child_count) leaf.push_back(i);
+  std::vector<MeshFace> faces(leaf.size());
+  tbb::parallel_for(size_t(0), leaf.size(), [&](size_t f) {
+    const HNode& n = h[leaf[f]];
+    faces[f] = {n.shape, n.normal, n.B, n.rho, n.area, n.polygon};
+  });
   if (!point.on) return mesh_faces(faces, exposure);
   // The mesher asks for a face's points one after another on one thread: the leaf's gather is kept
   // between them (LeafRadiosity), per thread; the clusters' part once for all (ClusterGather).
@@ -99,7 +101,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
           for (const auto& applied : cut.applied) point.counts->faces_cut += !applied.empty();
         std::vector<uint32_t> cut_leaf(cut.from.size());
         std::vector<EmitterRanges> cut_candidates(cut.from.size());
-        for (size_t k = 0; k < cut.from.size(); ++k) {
+        tbb::parallel_for(size_t(0), cut.from.size(), [&](size_t k) {
           cut_leaf[k] = leaf[cut.from[k]];
           // A piece gathers the emitters whose boundaries cut its face too: a leaf the solution found
           // wholly hidden from the lamp (no link to it) lies partly in its penumbra once cut there.
@@ -109,7 +111,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
             const uint32_t e = chosen.emitter[faces[f].polygon][g];
             if (e != kNoEmitter) merge_ranges(cut_candidates[k], {{e, e + 1}});
           }
-        }
+        });
         faces.swap(cut.faces);
         leaf.swap(cut_leaf);
         candidates.swap(cut_candidates);

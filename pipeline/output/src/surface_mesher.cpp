@@ -1,13 +1,15 @@
 #include "walkrad/output/surface_mesher.h"
+#include "walkrad/output/corner_weld.h"
 #include "walkrad/core/ranks.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
+#include <optional>
 
 namespace walkrad {
 
@@ -31,51 +33,6 @@ namespace {
 // all sides and the shifts cancel to first order: at 5% the Cornell box 0.909 -> 0.904% weighted RMS,
 // office-floor's 8 rooms 2.771 -> 2.752%, lamp-room 1.289 -> 1.287% (docs/accuracy.md).
 constexpr double kInward = 0.05;
-
-struct CellKey {
-  int64_t x, y, z;
-  bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
-  bool operator<(const CellKey& o) const { return x != o.x ? x < o.x : y != o.y ? y < o.y : z < o.z; }
-};
-struct CellHash {
-  size_t operator()(const CellKey& k) const {
-    return size_t((uint64_t(k.x) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(k.y) * 0xC2B2AE3D27D4EB4Full) ^ (uint64_t(k.z) * 0x165667B19E3779F9ull));
-  }
-};
-
-// Points in cells of a uniform grid: a point's neighbours within the cell size are in the 27 cells
-// around its own.
-class PointGrid {
- public:
-  explicit PointGrid(double cell) : cell_(cell) {}
-  CellKey key(const Vec3& p) const {
-    return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)), int64_t(std::floor(p.z / cell_))};
-  }
-  void add(const Vec3& p, uint32_t id) { cells_[key(p)].push_back(id); }
-  // The 27 cells around p's (a point's neighbours within the cell size lie in them).
-  template <class F>
-  void each_key_around(const Vec3& p, F&& visit) const {
-    const CellKey k = key(p);
-    for (int64_t dz = -1; dz <= 1; ++dz)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx) visit(CellKey{k.x + dx, k.y + dy, k.z + dz});
-  }
-  const std::vector<uint32_t>& in(const CellKey& k) const {
-    static const std::vector<uint32_t> none;
-    const auto it = cells_.find(k);
-    return it == cells_.end() ? none : it->second;
-  }
-  template <class F>
-  void around(const Vec3& p, F&& visit) const {
-    each_key_around(p, [&](const CellKey& k) {
-      for (uint32_t id : in(k)) visit(id);
-    });
-  }
-
- private:
-  double cell_;
-  std::unordered_map<CellKey, std::vector<uint32_t>, CellHash> cells_;
-};
 
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -101,30 +58,26 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // Positions closer than weld_tol are one vertex; a vertex closer than weld_tol to an edge lies on it.
   const double weld_tol = 1e-6 * std::max(length(bounds.diagonal()), 1e-30);
 
-  // 1. Weld the corners (first come, first numbered: deterministic).
+  // 1. Weld the corners (first come, first numbered: deterministic; corner_weld.h).
   std::vector<Vec3> points;
-  PointGrid weld(weld_tol);
-  auto weld_point = [&](const Vec3& p) {
-    uint32_t found = UINT32_MAX;
-    weld.around(p, [&](uint32_t id) {
-      if (found == UINT32_MAX && length(points[id] - p) <= weld_tol) found = id;
-    });
-    if (found != UINT32_MAX) return found;
-    points.push_back(p);
-    weld.add(p, uint32_t(points.size() - 1));
-    return uint32_t(points.size() - 1);
-  };
   std::vector<std::array<uint32_t, 4>> corner(faces.size());
-  for (size_t i = 0; i < faces.size(); ++i)
-    for (int k = 0; k < faces[i].shape.count; ++k) corner[i][size_t(k)] = weld_point(faces[i].shape.v[k]);
-  weld = PointGrid(weld_tol);  // its cells freed before the next grid is filled
+  {
+    std::vector<Vec3> corners;
+    std::vector<size_t> corner_begin(faces.size() + 1, 0);
+    for (size_t i = 0; i < faces.size(); ++i) corner_begin[i + 1] = corner_begin[i] + size_t(faces[i].shape.count);
+    corners.reserve(corner_begin.back());
+    for (const MeshFace& f : faces) corners.insert(corners.end(), f.shape.v.begin(), f.shape.v.begin() + f.shape.count);
+    WeldedCorners welded = weld_corners(corners, weld_tol);
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (int k = 0; k < faces[i].shape.count; ++k) corner[i][size_t(k)] = welded.point_of[corner_begin[i] + size_t(k)];
+    points = std::move(welded.points);
+  }
 
   // 2. Each face's boundary: its corners with the vertices lying inside its edges, in order. Edges are
   // walked in steps of the grid's cell; the cells around the steps, each once, hold the candidates.
   // Faces in parallel (the grid only read), joined in face order.
   const double cell = std::max(edge_sum / double(std::max<size_t>(faces.size(), 1)) / 4.0, 4 * weld_tol);
-  PointGrid grid(cell);
-  for (uint32_t id = 0; id < points.size(); ++id) grid.add(points[id], id);
+  std::optional<CellIndex> grid(std::in_place, points, cell);
   std::vector<std::vector<uint32_t>> face_boundary(faces.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<CellKey> keys;
@@ -144,7 +97,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
         keys.clear();
         for (int s = 0; s <= steps; ++s) {
           const Vec3 q = p + d * (double(s) / steps);
-          const CellKey lo = grid.key(q - reach), hi = grid.key(q + reach);
+          const CellKey lo = grid->key(q - reach), hi = grid->key(q + reach);
           for (int64_t z = lo.z; z <= hi.z; ++z)
             for (int64_t y = lo.y; y <= hi.y; ++y)
               for (int64_t x = lo.x; x <= hi.x; ++x) keys.push_back({x, y, z});
@@ -152,20 +105,23 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
         on_edge.clear();
-        for (const CellKey& key : keys)
-          for (uint32_t id : grid.in(key)) {  // a point lies in one cell: each candidate once
+        for (const CellKey& key : keys) {
+          const auto [first, last] = grid->in(key);
+          for (const uint32_t* c = first; c != last; ++c) {  // a point lies in one cell: each candidate once
+            const uint32_t id = *c;
             if (id == a || id == b) continue;
             const double t = dot(points[id] - p, d) / len2;
             if (t * len <= weld_tol || (1 - t) * len <= weld_tol) continue;
             if (length(p + d * t - points[id]) <= weld_tol) on_edge.push_back({t, id});
           }
+        }
         std::sort(on_edge.begin(), on_edge.end());
         face_boundary[i].push_back(a);
         for (const auto& [t, id] : on_edge) face_boundary[i].push_back(id);
       }
     }
   });
-  grid = PointGrid(cell);
+  grid.reset();
   std::vector<uint32_t> boundary, boundary_begin{0};
   for (std::vector<uint32_t>& b : face_boundary) {
     boundary.insert(boundary.end(), b.begin(), b.end());
@@ -183,9 +139,10 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   }
   {
     std::vector<std::pair<uint32_t, uint32_t>> touch;  // (vertex, polygon)
+    touch.reserve(boundary.size());
     for (size_t i = 0; i < faces.size(); ++i)
       for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) touch.push_back({boundary[j], faces[i].polygon});
-    std::sort(touch.begin(), touch.end());
+    tbb::parallel_sort(touch.begin(), touch.end());  // a total order: the same whatever the threads
     touch.erase(std::unique(touch.begin(), touch.end()), touch.end());
     for (size_t s = 0; s < touch.size();) {
       size_t e = s;
