@@ -15,6 +15,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "walkrad/core/rounding.h"
 #include "walkrad/formfactor/form_factor.h"
@@ -52,7 +53,7 @@ void Solver::update_scales() {
     }
     if (total > 0) break;
   }
-  std::sort(seen.begin(), seen.end());
+  tbb::parallel_sort(seen.begin(), seen.end());  // pairs in a total order: the same whatever the threads
   double below = 0, p95 = 0;
   for (const auto& [b, w] : seen) {
     p95 = b;
@@ -275,25 +276,28 @@ void Solver::measure_left_error() {
   update_scales();
   measure_variation();
   stats_.white = white_;
-  for (uint32_t i = 0; i < h_.nodes().size(); ++i) {
-    HNode& n = h_[i];
-    if (!here(i)) continue;  // its holder's, below
-    if (n.links.empty()) {
-      n.error = 0;
-      continue;
+  // Each node's own (nodes in parallel: each writes its own error).
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(h_.nodes().size()), 1024), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t i = r.begin(); i != r.end(); ++i) {
+      HNode& n = h_[i];
+      if (!here(i)) continue;  // its holder's, below
+      if (n.links.empty()) {
+        n.error = 0;
+        continue;
+      }
+      // An RMS, as the sweep measures: the variation's RMS left inside the children, not its worst
+      // child (which the refinement tests), with the source's and the form factor's errors.
+      double sq = double(left_[i]) * double(left_[i]);
+      const double rho = luminance(n.rho);
+      const bool gather = gathered(i);
+      for (const Link& l : n.links) {
+        const double carried = gather ? reflected_sent(l) : luminance(link_sent(l));
+        const double source = source_error(n, l), noise = rho * carried * l.sigma;
+        sq += source * source + noise * noise;
+      }
+      n.error = float(std::sqrt(sq));
     }
-    // An RMS, as the sweep measures: the variation's RMS left inside the children, not its worst
-    // child (which the refinement tests), with the source's and the form factor's errors.
-    double sq = double(left_[i]) * double(left_[i]);
-    const double rho = luminance(n.rho);
-    const bool gather = gathered(i);
-    for (const Link& l : n.links) {
-      const double carried = gather ? reflected_sent(l) : luminance(link_sent(l));
-      const double source = source_error(n, l), noise = rho * carried * l.sigma;
-      sq += source * source + noise * noise;
-    }
-    n.error = float(std::sqrt(sq));
-  }
+  });
   share_element_values<float>(h_, [&](uint32_t i) { return h_[i].error; },
                               [&](uint32_t i, float e) { h_[i].error = e; });
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)

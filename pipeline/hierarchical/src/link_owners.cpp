@@ -1,6 +1,9 @@
 #include "walkrad/hierarchical/link_owners.h"
 
 #include <algorithm>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 #include <cstring>
 
 namespace walkrad {
@@ -45,9 +48,16 @@ void move_links(Hierarchy& h, Send send, Take take) {
 }  // namespace
 
 uint64_t link_bytes(const Hierarchy& h) {
-  uint64_t bytes = 0;
-  for (const HNode& n : h.nodes()) bytes += n.links.capacity() * sizeof(Link);
-  return bytes;
+  // A walk over every node (a whole pass over the hierarchy's memory, noted each round): in parallel,
+  // an integer sum being the same in any order.
+  const std::vector<HNode>& nodes = h.nodes();
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, nodes.size(), 4096), uint64_t(0),
+      [&](const tbb::blocked_range<size_t>& r, uint64_t bytes) {
+        for (size_t k = r.begin(); k != r.end(); ++k) bytes += nodes[k].links.capacity() * sizeof(Link);
+        return bytes;
+      },
+      [](uint64_t a, uint64_t b) { return a + b; });
 }
 
 LinkOwners divide_polygons(const ClusterTree& tree, int ranks, int me) {

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
 #include <cstring>
+#include <memory>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "walkrad/formfactor/form_factor.h"
@@ -88,31 +91,37 @@ Vec3 ClusterGather::sent(const Link& l, bool gathered, const Vec3& receiver) con
 
 void ClusterGather::resolve_close_sources(const std::vector<uint32_t>& leaves, const std::vector<uint32_t>* twins) {
   const size_t count = h_.nodes().size();
-  // The close leaf sources of the leaves' links (their own and their ancestors').
-  std::vector<uint8_t> close(count, 0), done(count, 0);
-  std::vector<uint32_t> stack;
+  // The close leaf sources of the leaves' links (their own and their ancestors'): a union, the same
+  // whichever leaf marks a source first, so the leaves are walked in parallel.
+  std::unique_ptr<std::atomic<uint8_t>[]> close(new std::atomic<uint8_t>[count]());
+  std::vector<uint32_t> distinct(leaves);
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
   const LinkOwners& owners = h_.owners();
-  for (const uint32_t leaf : leaves) {
-    if (done[leaf] || !owners.holds_polygon(h_[leaf].polygon)) continue;  // once a leaf, on its links' rank
-    done[leaf] = 1;
-    const HNode& n = h_[leaf];
-    for (int32_t a = int32_t(leaf); a >= 0 && !h_[uint32_t(a)].cluster; a = h_[uint32_t(a)].parent)
-      for (const Link& l : h_[uint32_t(a)].links) {
-        const HNode& top = h_[l.source];
-        if (top.cluster || l.open <= 0 || !(length(top.center - n.center) < kPart * top.radius + n.radius)) continue;
-        // The source, or the leaves under it that near_parts reaches from the leaf's points.
-        stack.assign(1, l.source);
-        while (!stack.empty()) {
-          const uint32_t k = stack.back();
-          stack.pop_back();
-          const HNode& s = h_[k];
-          if (!(length(s.center - n.center) < kPart * s.radius + n.radius)) continue;
-          if (s.child_count == 0 && n.radius < kFinerReceiver * s.radius) close[k] = 1;
-          else if (s.child_count == 4)
-            for (uint32_t c = 0; c < 4; ++c) stack.push_back(h_.child(s, c));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, distinct.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<uint32_t> stack;
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const uint32_t leaf = distinct[i];
+      if (!owners.holds_polygon(h_[leaf].polygon)) continue;  // on its links' rank
+      const HNode& n = h_[leaf];
+      for (int32_t a = int32_t(leaf); a >= 0 && !h_[uint32_t(a)].cluster; a = h_[uint32_t(a)].parent)
+        for (const Link& l : h_[uint32_t(a)].links) {
+          const HNode& top = h_[l.source];
+          if (top.cluster || l.open <= 0 || !(length(top.center - n.center) < kPart * top.radius + n.radius)) continue;
+          // The source, or the leaves under it that near_parts reaches from the leaf's points.
+          stack.assign(1, l.source);
+          while (!stack.empty()) {
+            const uint32_t k = stack.back();
+            stack.pop_back();
+            const HNode& s = h_[k];
+            if (!(length(s.center - n.center) < kPart * s.radius + n.radius)) continue;
+            if (s.child_count == 0 && n.radius < kFinerReceiver * s.radius) close[k].store(1, std::memory_order_relaxed);
+            else if (s.child_count == 4)
+              for (uint32_t c = 0; c < 4; ++c) stack.push_back(h_.child(s, c));
+          }
         }
-      }
-  }
+    }
+  });
   std::vector<uint32_t> sources;
   for (uint32_t k = 0; k < count; ++k)
     if (close[k]) sources.push_back(k);

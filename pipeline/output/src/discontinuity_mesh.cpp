@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/scene/convex_loop.h"
@@ -54,7 +55,7 @@ bool changes_across(const RayScene& rays, const BoundarySegment& g, const Vec3& 
 
 }  // namespace
 
-BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const std::vector<MeshFace>& faces,
+BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const MeshFaces& faces,
                                     const std::vector<uint8_t>& seen, const std::vector<EmitterRanges>& emitters,
                                     uint64_t budget, const RayScene* rays) {
   const Scene& scene = h.scene();
@@ -112,7 +113,8 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
   for (auto& list : found) all.insert(all.end(), list.begin(), list.end());
   out.found = all.size();
   for (uint64_t n : hidden) out.hidden += n;
-  std::sort(all.begin(), all.end(), [](const Ranked& a, const Ranked& b) {
+  // (contrast, polygon, order) is a total order: the same list whatever the threads.
+  tbb::parallel_sort(all.begin(), all.end(), [](const Ranked& a, const Ranked& b) {
     if (a.contrast != b.contrast) return a.contrast > b.contrast;
     return a.polygon != b.polygon ? a.polygon < b.polygon : a.order < b.order;
   });
@@ -127,7 +129,7 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
   return out;
 }
 
-CutFaces cut_faces(const std::vector<MeshFace>& faces, const std::vector<std::vector<BoundarySegment>>& by_polygon,
+CutFaces cut_faces(const MeshFaces& faces, const std::vector<std::vector<BoundarySegment>>& by_polygon,
                    double snap, double min_share) {
   std::vector<std::vector<Polygon>> pieces(faces.size());
   CutFaces out;

@@ -3,7 +3,7 @@
 namespace walkrad {
 
 SurfaceMesh mesh_elements(const Subdivision& sub, const std::vector<Vec3>& radiosity, double exposure) {
-  std::vector<MeshFace> faces;
+  MeshFaces faces;
   faces.reserve(sub.elements.size());
   for (size_t e = 0; e < sub.elements.size(); ++e) {
     const Element& el = sub.elements[e];

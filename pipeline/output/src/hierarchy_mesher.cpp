@@ -27,7 +27,7 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
   std::vector<uint32_t> leaf;
   for (uint32_t i = 0; i < h.nodes().size(); ++i)
     if (!h[i].cluster && !h[i].child_count) leaf.push_back(i);
-  std::vector<MeshFace> faces(leaf.size());
+  MeshFaces faces(leaf.size());
   tbb::parallel_for(size_t(0), leaf.size(), [&](size_t f) {
     const HNode& n = h[leaf[f]];
     faces[f] = {n.shape, n.normal, n.B, n.rho, n.area, n.polygon};

@@ -1,5 +1,6 @@
 #include "walkrad/output/surface_mesher.h"
 #include "walkrad/output/corner_weld.h"
+#include "walkrad/core/huge_pages.h"
 #include "walkrad/core/ranks.h"
 
 #include <tbb/blocked_range.h>
@@ -41,7 +42,7 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
 
 }  // namespace
 
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather,
+SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather,
                        const FaceRanks& face_rank, const std::function<void()>& read) {
   SurfaceMesh surface;
   if (faces.empty()) return surface;
@@ -60,7 +61,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
 
   // 1. Weld the corners (first come, first numbered: deterministic; corner_weld.h).
   std::vector<Vec3> points;
-  std::vector<std::array<uint32_t, 4>> corner(faces.size());
+  HugeVector<std::array<uint32_t, 4>> corner(faces.size());
   {
     std::vector<Vec3> corners;
     std::vector<size_t> corner_begin(faces.size() + 1, 0);
@@ -122,7 +123,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     }
   });
   grid.reset();
-  std::vector<uint32_t> boundary, boundary_begin{0};
+  HugeVector<uint32_t> boundary, boundary_begin{0};
   for (std::vector<uint32_t>& b : face_boundary) {
     boundary.insert(boundary.end(), b.begin(), b.end());
     boundary_begin.push_back(uint32_t(boundary.size()));
@@ -168,8 +169,8 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // mesh phase 1.20 -> 0.79 s, 1.031 -> 1.033% weighted RMS; lamp-room 1.253 -> 1.252%; test
   // ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
   // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
-  std::vector<uint32_t> slot_point, slot_group, slot_next, face_slots(boundary.size());
-  std::vector<uint32_t> first_slot(points.size(), UINT32_MAX);
+  HugeVector<uint32_t> slot_point, slot_group, slot_next, face_slots(boundary.size());
+  HugeVector<uint32_t> first_slot(points.size(), UINT32_MAX);
   for (size_t i = 0; i < faces.size(); ++i) {
     const uint32_t g = group[faces[i].polygon];
     for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
@@ -187,17 +188,17 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   }
   const size_t slots = slot_point.size();
   const bool gathering = at && gather.seen && gather.direct;
-  std::vector<uint8_t> face_seen(gathering ? faces.size() : 0), gathered(slots, 0);
+  HugeVector<uint8_t> face_seen(gathering ? faces.size() : 0), gathered(slots, 0);
   if (gathering)
     for (size_t i = 0; i < faces.size(); ++i)
       if ((face_seen[i] = gather.seen(i)))
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) gathered[face_slots[j]] = 1;
-  std::vector<Vec3> value(boundary.size()), centre_value(faces.size()), centre(faces.size());
+  HugeVector<Vec3> value(boundary.size()), centre_value(faces.size()), centre(faces.size());
   for (size_t i = 0; i < faces.size(); ++i) centre[i] = polygon_centroid(faces[i].shape);
-  std::vector<uint32_t> reader(gathering ? slots : 0, UINT32_MAX);  // a gathered slot's reading: its first face's corner
-  std::vector<Vec3> toward(gathering ? slots : 0);                  // and its faces' mean centre
+  HugeVector<uint32_t> reader(gathering ? slots : 0, UINT32_MAX);  // a gathered slot's reading: its first face's corner
+  HugeVector<Vec3> toward(gathering ? slots : 0);                  // and its faces' mean centre
   if (gathering) {
-    std::vector<uint32_t> around(slots, 0);
+    HugeVector<uint32_t> around(slots, 0);
     for (size_t i = 0; i < faces.size(); ++i) {
       for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
         const uint32_t s = face_slots[j];
@@ -239,7 +240,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
       rank_work().items += mine.size();
       rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       share_owned(centre_value, [&](size_t i) { return fanned(i) ? face_rank(i) : -1; });
-      std::vector<int> corner_rank(boundary.size(), -1);
+      HugeVector<int> corner_rank(boundary.size(), -1);
       for (size_t i = 0; i < faces.size(); ++i)
         for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
           if (!gathered[face_slots[j]] || reader[face_slots[j]] == j) corner_rank[j] = face_rank(i);
@@ -260,8 +261,8 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     }
   }
   if (read) read();
-  std::vector<Vec3> sum(slots), rho(slots);
-  std::vector<double> weight(slots, 0.0);
+  HugeVector<Vec3> sum(slots), rho(slots);
+  HugeVector<double> weight(slots, 0.0);
   for (size_t i = 0; i < faces.size(); ++i)
     for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
       const uint32_t s = face_slots[j];
@@ -271,13 +272,13 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
     }
   if (gathering) {
     // Each gathered vertex's faces (in face order), then its direct light, once.
-    std::vector<uint32_t> begin(slots + 1, 0), members(boundary.size());
+    HugeVector<uint32_t> begin(slots + 1, 0), members(boundary.size());
     for (uint32_t j = 0; j < boundary.size(); ++j) ++begin[face_slots[j] + 1];
     for (size_t s = 0; s < slots; ++s) begin[s + 1] += begin[s];
-    std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
+    HugeVector<uint32_t> fill(begin.begin(), begin.end() - 1);
     for (size_t i = 0; i < faces.size(); ++i)
       for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) members[fill[face_slots[j]]++] = uint32_t(i);
-    std::vector<Vec3> direct(slots);
+    HugeVector<Vec3> direct(slots);
     const std::vector<size_t> blocks =
         run_my_block(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; }, [&](size_t first, size_t last) {
           tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
@@ -296,9 +297,9 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   // 5. Output: vertices in order of first use, then each face's triangles (a fan from its centre
   // when T-vertices lie on its edges). The readings are spent, and the arrays are made to their
   // sizes, not grown by doubling (with the frees, the 150-room level's peak 4,298 -> 4,195 MiB).
-  for (std::vector<Vec3>* spent : {&value, &rho, &toward}) std::vector<Vec3>().swap(*spent);
-  for (std::vector<uint32_t>* spent : {&reader, &slot_group, &slot_next, &first_slot}) std::vector<uint32_t>().swap(*spent);
-  std::vector<std::array<uint32_t, 4>>().swap(corner);
+  for (HugeVector<Vec3>* spent : {&value, &rho, &toward}) HugeVector<Vec3>().swap(*spent);
+  for (HugeVector<uint32_t>* spent : {&reader, &slot_group, &slot_next, &first_slot}) HugeVector<uint32_t>().swap(*spent);
+  HugeVector<std::array<uint32_t, 4>>().swap(corner);
   size_t vertices = slots, triangles = 0;
   for (size_t i = 0; i < faces.size(); ++i) {
     const uint32_t count = boundary_begin[i + 1] - boundary_begin[i];
@@ -310,7 +311,7 @@ SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, cons
   for (std::vector<float>* a : {&mesh.positions, &mesh.normals, &mesh.radiosity, &mesh.colors}) a->reserve(3 * vertices);
   mesh.indices.reserve(3 * triangles);
   surface.triangle_polygon.reserve(triangles);
-  std::vector<uint32_t> out_index(sum.size(), UINT32_MAX);
+  HugeVector<uint32_t> out_index(sum.size(), UINT32_MAX);
   auto vertex = [&](uint32_t s, const Vec3& normal) {
     if (out_index[s] == UINT32_MAX) {
       out_index[s] = uint32_t(mesh.vertex_count());

@@ -97,7 +97,7 @@ MeshFace square(double x0, double z0, double s, uint32_t polygon) {
 TEST(CutFaces, PiecesKeepTheAreaAndTheMeshStaysCrackFree) {
   // A 4 × 4 grid of faces on one polygon, and a segment crossing three columns at a slant, ending in
   // the middle of a face.
-  std::vector<MeshFace> faces;
+  MeshFaces faces;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) faces.push_back(square(i, j, 1, 0));
   const BoundarySegment g{{0.2, 0, 0.5}, {2.5, 0, 2.9}, {}};
@@ -137,7 +137,7 @@ TEST(CutFaces, PiecesKeepTheAreaAndTheMeshStaysCrackFree) {
 }
 
 TEST(CutFaces, ASliverIsNotCut) {
-  const std::vector<MeshFace> faces = {square(0, 0, 1, 0)};
+  const MeshFaces faces = {square(0, 0, 1, 0)};
   const BoundarySegment g{{1e-5, 0, -1}, {1e-5, 0, 2}, {}};  // 10 µm from the face's edge
   const CutFaces cut = cut_faces(faces, {{g}}, 1e-9);
   EXPECT_EQ(cut.faces.size(), 1u);

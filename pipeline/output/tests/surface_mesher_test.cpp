@@ -26,7 +26,7 @@ MeshFace square(double x0, double y0, double s, double radiosity, uint32_t polyg
 }
 
 // A coarse square beside a finer one, as two polygons of one material (a floor cut in two).
-std::vector<MeshFace> coarse_beside_fine(uint32_t right_material = 0) {
+MeshFaces coarse_beside_fine(uint32_t right_material = 0) {
   return {square(0, 0, 1, 1.0, 0), square(1, 0, 0.5, 2.0, 1, right_material), square(1.5, 0, 0.5, 3.0, 1, right_material),
           square(1, 0.5, 0.5, 4.0, 1, right_material), square(1.5, 0.5, 0.5, 5.0, 1, right_material)};
 }
@@ -71,7 +71,7 @@ TEST(SurfaceMesher, KeepsMaterialBoundariesAndCreasesSharpButWatertight) {
   EXPECT_EQ(test::count_t_junctions(s.mesh, 1e-9), 0u);
   EXPECT_GT(test::largest_colour_seam(s.mesh, 1e-9), 0.0);
   // A wall standing on the floor's edge (a crease): watertight, each side with its own normal.
-  std::vector<MeshFace> faces = coarse_beside_fine();
+  MeshFaces faces = coarse_beside_fine();
   faces.push_back(face({0, 0, 0}, {0, 0, 1}, {2, 0, 1}, {2, 0, 0}, 7.0, 2));
   const SurfaceMesh w = mesh_faces(faces, 1.0);
   EXPECT_EQ(test::count_t_junctions(w.mesh, 1e-9), 0u);

@@ -160,8 +160,8 @@ void share_owned(size_t n, Owner owner, Get get, Set set) {
 }
 
 // The same for a value per item kept in a vector.
-template <class T, class Owner>
-void share_owned(std::vector<T>& v, Owner owner) {
+template <class T, class Allocator, class Owner>
+void share_owned(std::vector<T, Allocator>& v, Owner owner) {
   share_owned<T>(v.size(), owner, [&](size_t i) { return v[i]; }, [&](size_t i, const T& x) { v[i] = x; });
 }
 

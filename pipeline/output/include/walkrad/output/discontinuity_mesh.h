@@ -31,7 +31,7 @@ struct BoundarySelection {
 // rays (null: none tested): a boundary is kept only where the emitter point it is drawn for
 // (BoundarySegment::flips) is seen from one side of its middle and hidden from the other: an event that
 // something else hides (a box's shadow boundary inside another's umbra) changes nothing there.
-BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const std::vector<MeshFace>& faces,
+BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& direct, const MeshFaces& faces,
                                     const std::vector<uint8_t>& seen, const std::vector<EmitterRanges>& emitters,
                                     uint64_t budget, const RayScene* rays);
 
@@ -46,11 +46,11 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
 // cut it. The mesher then anchors the T-vertices the cuts leave on the
 // neighbours' edges (surface_mesher.h): the mesh stays crack-free.
 struct CutFaces {
-  std::vector<MeshFace> faces;
+  MeshFaces faces;
   std::vector<uint32_t> from;
   std::vector<std::vector<uint32_t>> applied;  // by input face
 };
-CutFaces cut_faces(const std::vector<MeshFace>& faces, const std::vector<std::vector<BoundarySegment>>& by_polygon,
+CutFaces cut_faces(const MeshFaces& faces, const std::vector<std::vector<BoundarySegment>>& by_polygon,
                    double snap, double min_share = 1e-3);
 
 }  // namespace walkrad

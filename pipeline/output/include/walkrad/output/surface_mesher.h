@@ -16,6 +16,7 @@
 #include <functional>
 #include <vector>
 
+#include "walkrad/core/huge_pages.h"
 #include "walkrad/formats/scene.h"
 #include "walkrad/formats/chunk.h"
 
@@ -39,6 +40,8 @@ struct MeshFace {
   double area = 0;
   uint32_t polygon = 0;  // the (contact-split) scene polygon it lies on
 };
+// On huge pages (core/huge_pages.h): a large level's faces are made afresh, page by page, twice.
+using MeshFaces = HugeVector<MeshFace>;
 
 // B at a point of face i (a corner nudged into the face, or its centre), where the solution can say
 // more than its face's mean (point_radiosity.h); gathered: without the direct light, which the final
@@ -62,7 +65,7 @@ struct VertexGather {
 using FaceRanks = std::function<int(size_t face)>;
 // read, when given, is called once every reading of at is taken, before the vertices' direct light is
 // gathered and the mesh written: what at reads may be freed then (a million-face level's links: 0.8 GB).
-SurfaceMesh mesh_faces(const std::vector<MeshFace>& faces, double exposure, const FaceRadiosity& at = {},
+SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadiosity& at = {},
                        const VertexGather& gather = {}, const FaceRanks& face_rank = {},
                        const std::function<void()>& read = {});
 
