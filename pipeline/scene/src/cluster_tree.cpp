@@ -1,6 +1,7 @@
 #include "walkrad/scene/cluster_tree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "walkrad/core/rounding.h"
@@ -22,6 +23,10 @@ struct Builder {
   uint32_t max_leaf;
   Vec3 origin{};          // the scene's lower corner
   double quantum = 0;     // positions and extents are compared in steps of this (see build)
+  // Per polygon, worked out once rather than at every level of the tree: its area and its
+  // centroid's steps from the origin on each axis.
+  std::vector<double> area;
+  std::vector<std::array<long long, 3>> key;
 
   long long steps(double x) const { return std::llround(x / quantum); }
 
@@ -35,7 +40,7 @@ struct Builder {
     for (uint32_t i = first; i < first + count; ++i) {
       const uint32_t p = tree.polygons[i];
       node.bounds.extend(tree.polygon_bounds[p]);
-      node.area += polygon_area(scene.polygons[p]);
+      node.area += area[p];
       cb.extend(centroid[p]);
     }
     if (count > max_leaf) {
@@ -49,7 +54,7 @@ struct Builder {
       auto begin = tree.polygons.begin() + first, end = begin + count, mid = begin + count / 2;
       // Ties broken by polygon index: the tree does not depend on the sort's stability.
       std::nth_element(begin, mid, end, [&](uint32_t a, uint32_t b) {
-        const long long ka = steps(centroid[a][axis] - origin[axis]), kb = steps(centroid[b][axis] - origin[axis]);
+        const long long ka = key[a][size_t(axis)], kb = key[b][size_t(axis)];
         return ka < kb || (ka == kb && a < b);
       });
       node.child[0] = build(first, count / 2);
@@ -67,11 +72,12 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
   const uint32_t n = uint32_t(scene.polygons.size());
   tree.polygons.resize(n);
   tree.polygon_bounds.resize(n);
-  Builder b{scene, tree, std::vector<Vec3>(n), std::max(1u, max_leaf), Vec3{}, 0.0};
+  Builder b{scene, tree, std::vector<Vec3>(n), std::max(1u, max_leaf), Vec3{}, 0.0, std::vector<double>(n), {}};
   for (uint32_t i = 0; i < n; ++i) {
     tree.polygons[i] = i;
     tree.polygon_bounds[i] = polygon_bounds(scene.polygons[i]);
     b.centroid[i] = polygon_centroid(scene.polygons[i]);
+    b.area[i] = polygon_area(scene.polygons[i]);
   }
   Bounds all;
   for (uint32_t i = 0; i < n; ++i) all.extend(tree.polygon_bounds[i]);
@@ -79,6 +85,9 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
     b.origin = all.lo;
     b.quantum = std::max(1e-9 * length(all.diagonal()) + rounding_at(all.lo) + rounding_at(all.hi), 1e-300);
   }
+  b.key.resize(n);
+  for (uint32_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) b.key[i][size_t(a)] = b.steps(b.centroid[i][a] - b.origin[a]);
   tree.nodes.reserve(2 * (n / b.max_leaf + 1));
   if (n > 0) b.build(0, n);
   tree.slot.resize(n);

@@ -5,6 +5,10 @@
 #include <numeric>
 #include <tuple>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 namespace walkrad {
 
 namespace {
@@ -70,7 +74,8 @@ std::vector<double> blocking_areas(const Scene& scene, std::vector<double>* obje
   corners.reserve(4 * n);
   for (uint32_t i = 0; i < n; ++i)
     for (int k = 0; k < scene.polygons[i].count; ++k) corners.push_back({scene.polygons[i].v[k], i});
-  std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) {
+  // A total order but for a polygon's repeated corner (whose order changes nothing): in parallel.
+  tbb::parallel_sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) {
     return std::tie(a.p.x, a.p.y, a.p.z, a.polygon) < std::tie(b.p.x, b.p.y, b.p.z, b.polygon);
   });
   Objects objects(n);
@@ -125,12 +130,12 @@ VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree,
       sub.polygons.push_back(scene.polygons[i]);
     }
   const ClusterTree vt = build_cluster_tree(sub);
-  std::vector<std::pair<uint32_t, uint32_t>> scratch;
   const size_t nodes = vt.nodes.size();
   std::vector<double> prefix(vt.polygons.size() + 1, 0.0), feature(nodes, 0.0);
   for (size_t k = 0; k < vt.polygons.size(); ++k) prefix[k + 1] = prefix[k] + blocking[small[vt.polygons[k]]];
   std::vector<uint8_t> volume(nodes, 0);
-  // Children come after their parents (the tree is built depth first): bottom-up in reverse.
+  // Children come after their parents (the tree is built depth first): features bottom-up in reverse,
+  // then each node's test on its own (its dispersion sorts its objects: the costly part), in parallel.
   for (size_t i = nodes; i-- > 0;) {
     const ClusterNode& node = vt.nodes[i];
     double f = 0;
@@ -140,11 +145,15 @@ VolumeClusters find_volume_clusters(const Scene& scene, const ClusterTree& tree,
       f = std::max(feature[size_t(node.child[0])], feature[size_t(node.child[1])]);
     }
     feature[i] = f;
+  }
+  tbb::enumerable_thread_specific<std::vector<std::pair<uint32_t, uint32_t>>> scratches;
+  tbb::parallel_for(size_t(0), nodes, [&](size_t i) {
+    const ClusterNode& node = vt.nodes[i];
     const Vec3 d = node.bounds.diagonal();
     const double smallest = std::min({d.x, d.y, d.z});
-    volume[i] = node.count >= settings.min_polygons && smallest > 0 && f <= settings.feature_ratio * smallest &&
-                dispersion(node, vt.polygons, small, object_id, object_centre, scratch) <= settings.max_dispersion;
-  }
+    volume[i] = node.count >= settings.min_polygons && smallest > 0 && feature[i] <= settings.feature_ratio * smallest &&
+                dispersion(node, vt.polygons, small, object_id, object_centre, scratches.local()) <= settings.max_dispersion;
+  });
   // The finest volumes: descend through volumes while both children are volumes too.
   std::vector<uint32_t> stack;
   if (nodes > 0) stack.push_back(0);
