@@ -109,22 +109,19 @@ WeldedCorners weld_corners(const std::vector<Vec3>& corners, double tol) {
   std::vector<Near> near;
   {
     const CellIndex index(at, 4 * tol);
-    auto cell = [tol](const Vec3& p) {
-      return CellKey{int64_t(std::floor(p.x / tol)), int64_t(std::floor(p.y / tol)), int64_t(std::floor(p.z / tol))};
-    };
     tbb::enumerable_thread_specific<std::vector<Near>> found;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, positions, 1024), [&](const tbb::blocked_range<size_t>& r) {
       std::vector<Near>& mine = found.local();
       for (size_t u = r.begin(); u != r.end(); ++u) {
         const Vec3& p = at[u];
         const Vec3 reach(2 * tol, 2 * tol, 2 * tol);
-        const CellKey lo = index.key(p - reach), hi = index.key(p + reach), c = cell(p);
+        const CellKey lo = index.key(p - reach), hi = index.key(p + reach), c = cell_of(p, tol);
         for (int64_t x = lo.x; x <= hi.x; ++x)
           for (int64_t y = lo.y; y <= hi.y; ++y) {
             const auto [b, e] = index.in({x, y, lo.z}, hi.z);
             for (const uint32_t* v = b; v != e; ++v) {
               if (*v == u || length(at[*v] - p) > tol) continue;
-              const CellKey d = cell(at[*v]);
+              const CellKey d = cell_of(at[*v], tol);
               const int64_t dx = d.x - c.x, dy = d.y - c.y, dz = d.z - c.z;
               if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) > 1) continue;
               mine.push_back({uint32_t(u), *v, uint8_t((dz + 1) * 9 + (dy + 1) * 3 + (dx + 1))});

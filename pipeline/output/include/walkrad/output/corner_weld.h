@@ -26,14 +26,17 @@ struct CellKey {
   bool operator<(const CellKey& o) const { return x != o.x ? x < o.x : y != o.y ? y < o.y : z < o.z; }
 };
 
+// The cell of side `cell` that holds p.
+inline CellKey cell_of(const Vec3& p, double cell) {
+  return {int64_t(std::floor(p.x / cell)), int64_t(std::floor(p.y / cell)), int64_t(std::floor(p.z / cell))};
+}
+
 // Points in cells of a uniform grid: the (cell, id) pairs sorted, so that a cell's ids are one
 // ascending run found by binary search. Built once (in parallel), then read by any number of threads.
 class CellIndex {
  public:
   CellIndex(const std::vector<Vec3>& points, double cell);
-  CellKey key(const Vec3& p) const {
-    return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)), int64_t(std::floor(p.z / cell_))};
-  }
+  CellKey key(const Vec3& p) const { return cell_of(p, cell_); }
   // The ids in cells first..last along z (x and y fixed), ascending by cell, then by id.
   std::pair<const uint32_t*, const uint32_t*> in(const CellKey& first, int64_t last_z) const;
   std::pair<const uint32_t*, const uint32_t*> in(const CellKey& k) const { return in(k, k.z); }
