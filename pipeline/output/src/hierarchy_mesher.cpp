@@ -22,7 +22,7 @@ constexpr uint32_t kNoEmitter = UINT32_MAX;  // a cut that no emitter draws (a c
 }  // namespace
 
 SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolution& point) {
-  // The leaves, made to their count (a million faces' array grown by doubling is copied and
+  // The leaves, made to their count (a large level's array of faces grown by doubling is copied and
   // faulted in twice over: docs/performance.md).
   std::vector<uint32_t> leaf;
   for (uint32_t i = 0; i < h.nodes().size(); ++i)
