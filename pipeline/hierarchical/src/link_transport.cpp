@@ -10,10 +10,12 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "walkrad/core/huge_pages.h"
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
+#include "walkrad/hierarchical/hierarchy_walk.h"
 #include "walkrad/hierarchical/link_owners.h"
 
 namespace walkrad {
@@ -25,18 +27,18 @@ constexpr double kMinRaw = 0.25, kMaxRaw = 4.0;  // unscaled sums of the leaves 
 
 Vec3 abs3(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
 
-// Area mean over each node's leaf elements of value(leaf) (clusters without elements: 0). Nodes are
-// stored parents first, so a reverse pass sees every child before its parent.
+// Area mean over each node's leaf elements of value(leaf) (clusters without elements: 0), each node
+// after its children (hierarchy_walk.h: in parallel, the bits of one pass in reverse node order).
 template <class Vector, class F>
 void area_means(const Hierarchy& h, Vector& mean, F value) {
   using T = typename Vector::value_type;
   const std::vector<HNode>& nodes = h.nodes();
   mean.assign(nodes.size(), T{});
-  for (size_t k = nodes.size(); k-- > 0;) {
+  nodes_bottom_up(h, [&](uint32_t k) {
     const HNode& n = nodes[k];
     if (n.child_count == 0) {
       if (!n.cluster) mean[k] = value(n, k);
-      continue;
+      return;
     }
     T sum{};
     for (uint32_t c = 0; c < n.child_count; ++c) {
@@ -44,7 +46,7 @@ void area_means(const Hierarchy& h, Vector& mean, F value) {
       sum = sum + mean[child] * nodes[child].area;
     }
     mean[k] = n.area > 0 ? sum * (1.0 / n.area) : T{};
-  }
+  });
 }
 
 // Sums along each node's path from the root of per-node values (parents come first).
@@ -68,9 +70,6 @@ template <size_t N>
 struct Delivery {
   HugeVector<std::array<Vec3, N>> H;
   HugeVector<double> row;
-  // The clusters from the root to the one being read, each with what it and those above it gathered
-  // by direction (delivered's scratch).
-  std::vector<std::pair<uint32_t, std::array<DirectionalIrradiance, N>>> path;
 };
 
 // What a link with Link::seen takes from its source's parts, as the solve takes it.
@@ -90,32 +89,28 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   const std::vector<HNode>& nodes = h.nodes();
   d.H.assign(nodes.size(), std::array<Vec3, N>{});
   d.row.assign(nodes.size(), 0.0);
-  // The clusters, parents first, each with its parent's gather and its own links'. Hierarchy makes
-  // them in preorder (Hierarchy::made_at_start()): only the path from the root is held, and an element root
-  // takes what reaches it from the cluster above as it is read (a cube kept for every cluster was one
-  // more array of fresh pages each call: docs/performance.md).
-  auto& path = d.path;
-  path.clear();
-  for (size_t k = 0; k < h.made_at_start(); ++k) {
+  // Each cluster gathers by direction what its parent's cube holds and its own links bring; an element
+  // root takes what reaches its normal from the cluster above it. Subtrees in parallel (hierarchy_walk.h);
+  // a cube kept for every cluster was one more array of fresh pages each call (docs/performance.md).
+  if (nodes.empty()) return;
+  using Cubes = std::array<DirectionalIrradiance, N>;
+  clusters_top_down(h, h.root(), Cubes{}, [&](uint32_t k, const Cubes& above) {
     const HNode& n = nodes[k];
-    if (!n.cluster && n.depth != 0) continue;
-    while (!path.empty() && int64_t(path.back().first) != int64_t(n.parent)) path.pop_back();
-    if ((n.parent >= 0) == path.empty()) throw std::logic_error("link transport: the clusters are not in preorder");
-    if (!n.cluster) {  // an element root: what its ancestors' links deliver to its normal
-      const std::array<DirectionalIrradiance, N>& above = path.back().second;
-      for (size_t m = 0; m < N; ++m) d.H[k][m] = above[m].at(n.normal);
-      d.row[k] = above[0].row(n.normal);
-      continue;
-    }
-    const std::array<DirectionalIrradiance, N> above = path.empty() ? std::array<DirectionalIrradiance, N>{} : path.back().second;
-    path.emplace_back(uint32_t(k), above);  // (copied first: the vector may move as it grows)
-    std::array<DirectionalIrradiance, N>& mine = path.back().second;
+    Cubes mine = above;
     for (const Link& l : n.links) {
       const Vec3 u = link_direction(n, h[l.source]);
       const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
       for (size_t m = 0; m < N; ++m) mine[m].add(n, u, l.F, v[m]);
     }
-  }
+    for (uint32_t c = 0; c < n.child_count; ++c) {
+      const uint32_t root = h.child(n, c);
+      const HNode& e = nodes[root];
+      if (e.cluster) continue;
+      for (size_t m = 0; m < N; ++m) d.H[root][m] = mine[m].at(e.normal);
+      d.row[root] = mine[0].row(e.normal);
+    }
+    return mine;
+  });
   // Each input polygon's element tree depends only on the clusters above it: the trees in parallel,
   // each node after its parent. A parent's links are walked once for its four children (each child's
   // sum takes them in the same order as a walk per child would: the same bits).
@@ -306,11 +301,11 @@ std::vector<Vec3> emitted_as_sent(const Hierarchy& h) {
 
 void pull_up_radiosity(Hierarchy& h) {
   std::vector<HNode>& nodes = h.nodes();
-  for (size_t k = nodes.size(); k-- > 0;) {
+  nodes_bottom_up(h, [&](uint32_t k) {
     HNode& n = nodes[k];
     if (n.child_count == 0) {
       if (!n.cluster) n.Bt = n.B * n.send;
-      continue;
+      return;
     }
     Vec3 b, bt;
     for (uint32_t c = 0; c < n.child_count; ++c) {
@@ -320,7 +315,7 @@ void pull_up_radiosity(Hierarchy& h) {
     }
     n.B = n.area > 0 ? b / n.area : Vec3{};
     n.Bt = n.area > 0 ? bt / n.area : Vec3{};
-  }
+  });
 }
 
 BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_iterations) {
@@ -384,6 +379,10 @@ uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row, const std::vector
 
 struct CorrectionBuffers::Held {
   TransportBuffers<2> t;
+  // Per node: what a leaf adds to the correction's three sums (0 elsewhere), made in parallel and
+  // summed in node order: the sums of one pass over the nodes, bit for bit (a running sum from +0
+  // never is −0, so the zeros change nothing).
+  HugeVector<std::array<Vec3, 3>> terms;
 };
 
 CorrectionBuffers::CorrectionBuffers() : held(std::make_unique<Held>()) {}
@@ -397,29 +396,45 @@ double aggregation_correction(Hierarchy& h, double floor, double* level, Correct
   // (v from its B before this call changes it): two node-sized arrays fewer.
   const auto reflected = [](const HNode& n) { return n.B - n.emission - mul(n.rho, n.D); };
   const Delivery<2>& d = transport<2>(h, [&](const HNode& n) { return std::array<Vec3, 2>{n.B, reflected(n)}; }, held.t);
+  HugeVector<std::array<Vec3, 3>>& terms = held.terms;
+  terms.resize(nodes.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const HNode& n = nodes[k];
+      if (!is_leaf_element(n)) {
+        terms[k] = {};
+        continue;
+      }
+      const Vec3 tb = leaf_irradiance(n, d.H[k][0], d.row[k]), tv = leaf_irradiance(n, d.H[k][1], d.row[k]);
+      const Vec3 v = reflected(n);
+      terms[k] = {(n.emission + mul(n.rho, tb + n.D) - n.B) * n.area, (v - mul(n.rho, tv)) * n.area, v * n.area};
+    }
+  });
   Vec3 num, den, total;
   for (size_t k = 0; k < nodes.size(); ++k) {  // sequential: a fixed order of sums
-    const HNode& n = nodes[k];
-    if (!is_leaf_element(n)) continue;
-    const Vec3 tb = leaf_irradiance(n, d.H[k][0], d.row[k]), tv = leaf_irradiance(n, d.H[k][1], d.row[k]);
-    const Vec3 v = reflected(n);
-    num += (n.emission + mul(n.rho, tb + n.D) - n.B) * n.area;
-    den += (v - mul(n.rho, tv)) * n.area;
-    total += v * n.area;
+    num += terms[k][0];
+    den += terms[k][1];
+    total += terms[k][2];
   }
   Vec3 c;
   for (int k = 0; k < 3; ++k)
     if (den[k] > 1e-12 * total[k] && total[k] > 0) c[k] = std::max(-0.5, num[k] / den[k]);
   if (level) *level = max_component(abs3(c));
-  double largest = 0;
-  for (size_t k = 0; k < nodes.size(); ++k) {
-    HNode& n = nodes[k];
-    if (!is_leaf_element(n)) continue;
-    const Vec3 next = n.B + mul(c, reflected(n));
-    const double scale = std::max(max_component(next), floor);
-    if (scale > 0) largest = std::max(largest, max_component(abs3(next - n.B)) / scale);
-    n.B = next;
-  }
+  // The largest change, a maximum: the same whichever thread finds it.
+  const double largest = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, nodes.size(), 4096), 0.0,
+      [&](const tbb::blocked_range<size_t>& r, double most) {
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+          HNode& n = nodes[k];
+          if (!is_leaf_element(n)) continue;
+          const Vec3 next = n.B + mul(c, reflected(n));
+          const double scale = std::max(max_component(next), floor);
+          if (scale > 0) most = std::max(most, max_component(abs3(next - n.B)) / scale);
+          n.B = next;
+        }
+        return most;
+      },
+      [](double a, double b) { return std::max(a, b); });
   pull_up_radiosity(h);
   return largest;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/hierarchical/hierarchy_walk.h"
 
 namespace walkrad {
 
@@ -41,11 +42,10 @@ std::array<Vec3, 6> facing_from_children(const Hierarchy& h, uint32_t cluster, c
 // memory is kept: a sweep takes them again every time (fresh pages are a fault each).
 template <class Value, class Facing>  // Facing: a vector of std::array<Vec3, 6>, of any allocator
 void facing_radiosity(const Hierarchy& h, Value value, Facing& out) {
-  const std::vector<HNode>& nodes = h.nodes();
   out.resize(h.cluster_count());  // every entry is set below
-  // Children come after their parents: from the end, each cluster is complete before its parent takes it.
-  for (size_t k = h.made_at_start(); k-- > 0;)
-    if (nodes[k].cluster) out[nodes[k].tree_node] = facing_from_children(h, uint32_t(k), out, value);
+  if (h.nodes().empty()) return;
+  // Each cluster after its children (hierarchy_walk.h: subtrees in parallel, the same bits).
+  clusters_bottom_up(h, h.root(), [&](uint32_t k) { out[h[k].tree_node] = facing_from_children(h, k, out, value); });
 }
 
 template <class Value>
