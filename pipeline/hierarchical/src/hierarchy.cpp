@@ -239,19 +239,19 @@ uint32_t share_areas(const Hierarchy& h, uint32_t receiver, std::array<double, 4
   return 4;
 }
 
-void normalize_shares(const Hierarchy& h, uint32_t receiver, Link& link) {
+void normalize_shares(const Hierarchy& h, uint32_t receiver, std::array<float, 4>& share) {
   std::array<double, 4> areas;
   const uint32_t count = share_areas(h, receiver, areas);
   double total = 0, weighted = 0;
   for (uint32_t c = 0; c < count; ++c) {
     total += areas[c];
-    weighted += areas[c] * std::max(0.0f, link.share[c]);
+    weighted += areas[c] * std::max(0.0f, share[c]);
   }
   if (count == 0 || weighted <= 0) {
-    link.share = {1, 1, 1, 1};
+    share = {1, 1, 1, 1};
     return;
   }
-  for (uint32_t c = 0; c < count; ++c) link.share[c] = float(std::max(0.0f, link.share[c]) * total / weighted);
+  for (uint32_t c = 0; c < count; ++c) share[c] = float(std::max(0.0f, share[c]) * total / weighted);
 }
 
 // docs/performance.md gives the memory per link.

@@ -13,6 +13,7 @@
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
+#include "walkrad/hierarchical/hierarchy_walk.h"
 #include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/transmission.h"
@@ -56,26 +57,27 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
     facing_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt; });
     facing_g_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt - emitted_[k]; });
   }
-  // Down the cluster tree, each cluster's links added to its parent's, by direction.
-  std::vector<DirectionalIrradiance> cube(h.cluster_count()), cube_g(h.cluster_count());  // by tree_node
-  for (uint32_t k = 0; k < h.made_at_start(); ++k) {  // parents first
+  // Down the cluster tree, each cluster's links added to its parent's, by direction; an element root
+  // takes what reaches its normal from the cluster above it. Subtrees in parallel (hierarchy_walk.h).
+  if (h.nodes().empty()) return;
+  using Cubes = std::array<DirectionalIrradiance, 2>;  // all that is sent, and what is reflected
+  clusters_top_down(h, h.root(), Cubes{}, [&](uint32_t k, const Cubes& above) {
     const HNode& n = h[k];
-    const int32_t parent = n.parent;
-    if (n.cluster) {
-      const uint32_t c = n.tree_node;
-      if (parent >= 0) cube[c] = cube[h[uint32_t(parent)].tree_node], cube_g[c] = cube_g[h[uint32_t(parent)].tree_node];
-      for (const Link& l : n.links) {
-        const Vec3 u = link_direction(n, h[l.source]);
-        cube[c].add(n, u, l.F, sent(l, false, n.center));
-        cube_g[c].add(n, u, l.F, sent(l, true, n.center));
-      }
-    } else if (n.depth == 0 && parent >= 0) {
-      const uint32_t c = h[uint32_t(parent)].tree_node;
-      H_[n.polygon] = cube[c].at(n.normal);
-      Hg_[n.polygon] = cube_g[c].at(n.normal);
-      row_[n.polygon] = cube[c].row(n.normal);
+    Cubes mine = above;
+    for (const Link& l : n.links) {
+      const Vec3 u = link_direction(n, h[l.source]);
+      mine[0].add(n, u, l.F, sent(l, false, n.center));
+      mine[1].add(n, u, l.F, sent(l, true, n.center));
     }
-  }
+    for (uint32_t c = 0; c < n.child_count; ++c) {
+      const HNode& e = h[h.child(n, c)];
+      if (e.cluster) continue;
+      H_[e.polygon] = mine[0].at(e.normal);
+      Hg_[e.polygon] = mine[1].at(e.normal);
+      row_[e.polygon] = mine[0].row(e.normal);
+    }
+    return mine;
+  });
 }
 
 Vec3 ClusterGather::sent(uint32_t node, bool gathered) const {

@@ -366,7 +366,7 @@ class Solver {
   LinkCounts count_links(const PendingList& list) const;
   void add_counts(const LinkCounts& counts, IterationStats& is);
   // The kept links of an evaluated list put at their receivers, each receiver's list grown once.
-  void store_links(const PendingList& list);
+  void store_links(PendingList& list);
 
   // What of each segment arrives: 0 or 1 from Embree (against the solid scene when the link sees
   // through volumes), times the transmittance through the extinction grid.

@@ -212,8 +212,8 @@ uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal
 // quadrants); returns their count (0 for a leaf cluster without children).
 uint32_t share_areas(const Hierarchy& h, uint32_t receiver, std::array<double, 4>& areas);
 
-// Scales a link's shares so that their area mean over the receiver's children is 1.
-void normalize_shares(const Hierarchy& h, uint32_t receiver, Link& link);
+// Scales a link's shares (Link::share) so that their area mean over the receiver's children is 1.
+void normalize_shares(const Hierarchy& h, uint32_t receiver, std::array<float, 4>& share);
 
 // Calls part(node, weight) for the nodes a link takes its source's radiosity from, the weights
 // summing to 1: the source itself, or where Link::seen is set and the source has been split, its
