@@ -11,10 +11,9 @@
 namespace walkrad {
 namespace {
 
-// What link_transport's gather down the clusters and the cluster-indexed sums rely on: clusters are
-// numbered 0 .. cluster_count() − 1 by tree_node, one each, and made in preorder (walking the nodes
-// with a stack of clusters, every cluster's and element root's parent is on it), all before any
-// element split.
+// What the cluster-indexed sums rely on, clusters numbered 0 .. cluster_count() − 1 by tree_node, one
+// each; and the order Hierarchy documents for made_at_start(): preorder (walking the nodes with a stack
+// of clusters, every cluster's and element root's parent is on it), all before any element split.
 TEST(Hierarchy, ClustersAreNumberedByTreeNodeAndMadeInPreorder) {
   Scene scene;
   scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
