@@ -5,8 +5,6 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <stdexcept>
-#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -89,28 +87,14 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   const std::vector<HNode>& nodes = h.nodes();
   d.H.assign(nodes.size(), std::array<Vec3, N>{});
   d.row.assign(nodes.size(), 0.0);
-  // Each cluster gathers by direction what its parent's cube holds and its own links bring; an element
-  // root takes what reaches its normal from the cluster above it. Subtrees in parallel (hierarchy_walk.h);
-  // a cube kept for every cluster was one more array of fresh pages each call (docs/performance.md).
-  if (nodes.empty()) return;
-  using Cubes = std::array<DirectionalIrradiance, N>;
-  clusters_top_down(h, h.root(), Cubes{}, [&](uint32_t k, const Cubes& above) {
-    const HNode& n = nodes[k];
-    Cubes mine = above;
-    for (const Link& l : n.links) {
-      const Vec3 u = link_direction(n, h[l.source]);
-      const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
-      for (size_t m = 0; m < N; ++m) mine[m].add(n, u, l.F, v[m]);
-    }
-    for (uint32_t c = 0; c < n.child_count; ++c) {
-      const uint32_t root = h.child(n, c);
-      const HNode& e = nodes[root];
-      if (e.cluster) continue;
-      for (size_t m = 0; m < N; ++m) d.H[root][m] = mine[m].at(e.normal);
-      d.row[root] = mine[0].row(e.normal);
-    }
-    return mine;
-  });
+  // Each element root takes what the clusters above it deliver to its normal (a cube kept for every
+  // cluster was one more array of fresh pages each call: docs/performance.md).
+  gather_down_clusters<N>(
+      h, [&](const Link& l, const HNode& n) { return has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n); },
+      [&](uint32_t root, const std::array<DirectionalIrradiance, N>& cubes) {
+        for (size_t m = 0; m < N; ++m) d.H[root][m] = cubes[m].at(nodes[root].normal);
+        d.row[root] = cubes[0].row(nodes[root].normal);
+      });
   // Each input polygon's element tree depends only on the clusters above it: the trees in parallel,
   // each node after its parent. A parent's links are walked once for its four children (each child's
   // sum takes them in the same order as a walk per child would: the same bits).

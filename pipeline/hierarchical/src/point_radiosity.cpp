@@ -13,7 +13,6 @@
 #include "walkrad/formfactor/punctual_lights.h"
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
-#include "walkrad/hierarchical/hierarchy_walk.h"
 #include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/link_transport.h"
 #include "walkrad/hierarchical/transmission.h"
@@ -57,27 +56,15 @@ ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vecto
     facing_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt; });
     facing_g_ = facing_radiosity(h, [&](uint32_t k) { return h[k].Bt - emitted_[k]; });
   }
-  // Down the cluster tree, each cluster's links added to its parent's, by direction; an element root
-  // takes what reaches its normal from the cluster above it. Subtrees in parallel (hierarchy_walk.h).
-  if (h.nodes().empty()) return;
-  using Cubes = std::array<DirectionalIrradiance, 2>;  // all that is sent, and what is reflected
-  clusters_top_down(h, h.root(), Cubes{}, [&](uint32_t k, const Cubes& above) {
-    const HNode& n = h[k];
-    Cubes mine = above;
-    for (const Link& l : n.links) {
-      const Vec3 u = link_direction(n, h[l.source]);
-      mine[0].add(n, u, l.F, sent(l, false, n.center));
-      mine[1].add(n, u, l.F, sent(l, true, n.center));
-    }
-    for (uint32_t c = 0; c < n.child_count; ++c) {
-      const HNode& e = h[h.child(n, c)];
-      if (e.cluster) continue;
-      H_[e.polygon] = mine[0].at(e.normal);
-      Hg_[e.polygon] = mine[1].at(e.normal);
-      row_[e.polygon] = mine[0].row(e.normal);
-    }
-    return mine;
-  });
+  // Down the cluster tree by direction: all that is sent, and what is reflected.
+  gather_down_clusters<2>(
+      h, [&](const Link& l, const HNode& n) { return std::array<Vec3, 2>{sent(l, false, n.center), sent(l, true, n.center)}; },
+      [&](uint32_t root, const std::array<DirectionalIrradiance, 2>& cubes) {
+        const HNode& e = h[root];
+        H_[e.polygon] = cubes[0].at(e.normal);
+        Hg_[e.polygon] = cubes[1].at(e.normal);
+        row_[e.polygon] = cubes[0].row(e.normal);
+      });
 }
 
 Vec3 ClusterGather::sent(uint32_t node, bool gathered) const {

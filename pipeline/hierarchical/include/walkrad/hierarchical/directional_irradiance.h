@@ -8,8 +8,11 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 
 #include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/hierarchical/hierarchy_walk.h"
 
 namespace walkrad {
 
@@ -29,5 +32,28 @@ struct DirectionalIrradiance {
 
 // The unit direction from a link's receiver to its source (centre to centre).
 Vec3 link_direction(const HNode& receiver, const HNode& source);
+
+// What the clusters' links deliver, N quantities at once, down the cluster tree: each cluster's cubes
+// are its parent's plus its own links' in their order (value(link, cluster): the N radiosities the link
+// brings), and take(root, cubes) hands them to each element root just below it. Subtrees in parallel
+// (hierarchy_walk.h): the bits of a walk in node order. The solve's transport (link_transport.cpp) and
+// the mesh's readings (point_radiosity.cpp) both take it so.
+template <size_t N, class Value, class Take>
+void gather_down_clusters(const Hierarchy& h, Value value, Take take) {
+  using Cubes = std::array<DirectionalIrradiance, N>;
+  if (h.nodes().empty()) return;
+  clusters_top_down(h, h.root(), Cubes{}, [&](uint32_t k, const Cubes& above) {
+    const HNode& n = h[k];
+    Cubes mine = above;
+    for (const Link& l : n.links) {
+      const Vec3 u = link_direction(n, h[l.source]);
+      const std::array<Vec3, N> v = value(l, n);
+      for (size_t m = 0; m < N; ++m) mine[m].add(n, u, l.F, v[m]);
+    }
+    for (uint32_t c = 0; c < n.child_count; ++c)
+      if (!h[h.child(n, c)].cluster) take(h.child(n, c), mine);
+    return mine;
+  });
+}
 
 }  // namespace walkrad
