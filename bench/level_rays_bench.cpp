@@ -2,9 +2,10 @@
 // sample of the hierarchical solve's Embree rays (RaySample: the links of one (receiver, source) hash
 // bucket in `every`), then casts the same sampled rays in a bare loop of rtcOccluded1 calls on as many
 // threads: the machine's limit for those rays, against which the solve's rays per second (all its rays
-// over its wall time) are read. Prints one JSON object: the report's phases (seconds, peak memory,
-// rays where report.json counts them), the links, and the two rates. bench/large_level.py runs it over
-// office-floor levels and prints the table in docs/performance.md.
+// over its wall time) are read; and again as the solve casts them, each link's rays in one stream call
+// (RayScene::occluded: rtcOccluded1M, coherent). Prints one JSON object: the report's phases (seconds,
+// peak memory, rays where report.json counts them), the links, and the three rates. bench/large_level.py
+// runs it over office-floor levels and prints the table in docs/performance.md.
 //
 // walkrad_level_rays_bench SCENE OUT [--views W] [--view-independent] [--threads T] [--every N]
 #include <algorithm>
@@ -38,6 +39,28 @@ double bare_pass(const RayScene& rays, const std::vector<RayScene::Segment>& seg
       tbb::blocked_range<size_t>(0, segments.size(), 4096), size_t(0),
       [&](const tbb::blocked_range<size_t>& r, size_t n) {
         for (size_t k = r.begin(); k != r.end(); ++k) n += rays.occluded(segments[k].from, segments[k].to) ? 1 : 0;
+        return n;
+      },
+      [](size_t a, size_t b) { return a + b; });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The same rays as the solve casts them: each sampled link's segments in one RayScene::occluded call
+// (rtcOccluded1M, coherent), the links in parallel.
+double batched_pass(const RayScene& rays, const RaySample& sample, size_t& blocked) {
+  const std::vector<RayScene::Segment>& segments = sample.segments;
+  const std::vector<size_t>& begin = sample.link_begin;
+  const auto start = std::chrono::steady_clock::now();
+  blocked = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, begin.size(), 64), size_t(0),
+      [&](const tbb::blocked_range<size_t>& r, size_t n) {
+        std::vector<uint8_t> hit;
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+          const size_t first = begin[k], last = k + 1 < begin.size() ? begin[k + 1] : segments.size();
+          hit.assign(last - first, 0);
+          rays.occluded(segments.data() + first, last - first, hit.data());
+          for (uint8_t b : hit) n += b;
+        }
         return n;
       },
       [](size_t a, size_t b) { return a + b; });
@@ -105,6 +128,11 @@ int main(int argc, char** argv) {
   for (int run = 0; run < 3; ++run) seconds.push_back(bare_pass(rays, sample.segments, blocked));
   std::sort(seconds.begin(), seconds.end());
   const double bare = sample.segments.empty() ? 0.0 : double(sample.segments.size()) / seconds[1];
+  std::vector<double> batched_seconds;
+  size_t batched_blocked = 0;
+  for (int run = 0; run < 3; ++run) batched_seconds.push_back(batched_pass(rays, sample, batched_blocked));
+  std::sort(batched_seconds.begin(), batched_seconds.end());
+  const double batched = sample.segments.empty() ? 0.0 : double(sample.segments.size()) / batched_seconds[1];
   const double solve = solve_seconds > 0 ? solve_rays / solve_seconds : 0.0;
 
   const nlohmann::json out = {{"scene", s.scene},
@@ -119,7 +147,10 @@ int main(int argc, char** argv) {
                               {"sampled_rays", sample.segments.size()},
                               {"sampled_blocked", blocked},
                               {"bare_rays_per_s", bare},
-                              {"solve_over_bare", bare > 0 ? solve / bare : 0.0}};
+                              {"solve_over_bare", bare > 0 ? solve / bare : 0.0},
+                              {"batched_blocked", batched_blocked},
+                              {"batched_rays_per_s", batched},
+                              {"solve_over_batched", batched > 0 ? solve / batched : 0.0}};
   std::printf("%s\n", out.dump().c_str());
   return 0;
 }

@@ -141,6 +141,7 @@ void Solver::visibility(Pending& p, const std::vector<RayScene::Segment>& segmen
       const uint64_t hash = (uint64_t(p.receiver) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(p.source) * 0xC2B2AE3D27D4EB4Full);
       if ((hash >> 32) % std::max<uint32_t>(s_.ray_sample->every, 1) == 0) {
         const std::lock_guard<std::mutex> hold(s_.ray_sample->lock);
+        s_.ray_sample->link_begin.push_back(s_.ray_sample->segments.size());
         s_.ray_sample->segments.insert(s_.ray_sample->segments.end(), segments.begin(), segments.end());
       }
     }

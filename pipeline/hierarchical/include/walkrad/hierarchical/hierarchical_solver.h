@@ -40,6 +40,7 @@ struct RaySample {
   uint32_t every = 1024;
   std::mutex lock;
   std::vector<RayScene::Segment> segments;
+  std::vector<size_t> link_begin;  // where each sampled link's segments start (one call each in the solve)
 };
 
 struct HierarchicalSettings {
