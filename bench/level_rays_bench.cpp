@@ -124,16 +124,16 @@ int main(int argc, char** argv) {
   const Scene scene = split_contacts(read_scene(s.scene), split);
   const RayScene rays(scene);
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(std::max(1, s.threads)));
-  std::vector<double> seconds;
-  size_t blocked = 0;
-  for (int run = 0; run < 3; ++run) seconds.push_back(bare_pass(rays, sample.segments, blocked));
-  std::sort(seconds.begin(), seconds.end());
-  const double bare = sample.segments.empty() ? 0.0 : double(sample.segments.size()) / seconds[1];
-  std::vector<double> batched_seconds;
-  size_t batched_blocked = 0;
-  for (int run = 0; run < 3; ++run) batched_seconds.push_back(batched_pass(rays, sample, batched_blocked));
-  std::sort(batched_seconds.begin(), batched_seconds.end());
-  const double batched = sample.segments.empty() ? 0.0 : double(sample.segments.size()) / batched_seconds[1];
+  // Rays per second over the sample, the median of three passes.
+  auto rate = [&](auto pass) {
+    double seconds[3];
+    for (double& t : seconds) t = pass();
+    std::sort(seconds, seconds + 3);
+    return sample.segments.empty() ? 0.0 : double(sample.segments.size()) / seconds[1];
+  };
+  size_t blocked = 0, batched_blocked = 0;
+  const double bare = rate([&] { return bare_pass(rays, sample.segments, blocked); });
+  const double batched = rate([&] { return batched_pass(rays, sample, batched_blocked); });
   const double solve = solve_seconds > 0 ? solve_rays / solve_seconds : 0.0;
 
   const nlohmann::json out = {{"scene", s.scene},

@@ -376,11 +376,11 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   const bool all_blocked = !segments.empty() && open == 0;
   const bool exact = !all_blocked && polygon_pairs(ri, sj) <= kExactClusterPairs;
   const double unoccluded = exact ? exact_unoccluded(ri, sj) : mc / N;
-  // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
-  // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
   // Mostly hidden through volumes: the plain estimate, as for elements above.
   const bool mostly_hidden = p.volume && open < weighted - open;
   const bool plain = mostly_hidden || !exact;  // the estimate is the mean of K·v over the samples
+  // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
+  // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
   p.F = all_blocked ? 0.0 : std::max(0.0, mostly_hidden ? open / N : unoccluded - occluded);
   // Standard error: of the mean of K·v, or of the hidden part's mean K·(1 − v) beside an exact F;
   // every ray blocked: a visible fraction of about 1/n of the unoccluded form factor.

@@ -116,7 +116,7 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
         const HNode& n = nodes[it.node];
         if (n.child_count == 0)
           for (const Link& l : n.links) {
-            if (l.F == 0) continue;  // a hidden link adds nothing (Solver::gather)
+            if (!carries(l)) continue;
             const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
             for (size_t m = 0; m < N; ++m) it.H[m] += v[m] * l.F;
             it.row += l.F;
@@ -128,7 +128,7 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
         std::array<Item, 4> child;
         for (uint32_t c = 0; c < kids; ++c) child[c] = {h.child(n, c), it.H, it.row};
         for (const Link& l : n.links) {
-          if (l.F == 0) continue;
+          if (!carries(l)) continue;
           const std::array<Vec3, N> v = has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n);
           for (uint32_t c = 0; c < kids; ++c) {
             const double f = l.F * double(l.share[c]);

@@ -228,13 +228,13 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint3
       if (level.node != uint32_t(a)) {
         level.node = uint32_t(a);
         level.links.clear();
-        for (const Link& l : r.links) level.links.push_back(l.F == 0 ? ChainReadings::Reading{} : read(r, l));
+        for (const Link& l : r.links) level.links.push_back(carries(l) ? read(r, l) : ChainReadings::Reading{});
       }
       kept = &level.links;
     }
     for (size_t k = 0; k < r.links.size(); ++k) {
       const Link& l = r.links[k];
-      if (l.F == 0) continue;  // a hidden link brings nothing, at the leaf or at any of its points
+      if (!carries(l)) continue;  // nothing at the leaf, nor at any of its points
       const HNode& s = h[l.source];
       const ChainReadings::Reading reading = kept ? (*kept)[k] : read(r, l);
       const Vec3& sent = reading.sent;

@@ -41,7 +41,7 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance, double rela
       for (HNode& n : nodes) n.Ig = 0;
       for (const HNode& n : nodes)  // sequential: sums in a fixed order
         for (const Link& l : n.links)
-          if (l.F != 0) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
+          if (carries(l)) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
     }
     push_pull_importance(h_.root(), 0.0);
   }
@@ -63,9 +63,7 @@ void Solver::gather(HNode& n) {
   Vec3 H;
   double f = 0;
   for (const Link& l : n.links) {
-    // A hidden link (F = 0, kept for its σ) adds nothing: its source is not read (office-floor's 8
-    // rooms: 40% of the links; docs/performance.md).
-    if (l.F == 0) continue;
+    if (!carries(l)) continue;
     const HNode& source = h_[l.source];
     const Vec3 b = sent_to(n, l);
     H += b * l.F;

@@ -46,7 +46,7 @@ void gather_down_clusters(const Hierarchy& h, Value value, Take take) {
     const HNode& n = h[k];
     Cubes mine = above;
     for (const Link& l : n.links) {
-      if (l.F == 0) continue;  // a hidden link adds nothing (Solver::gather)
+      if (!carries(l)) continue;
       const Vec3 u = link_direction(n, h[l.source]);
       const std::array<Vec3, N> v = value(l, n);
       for (size_t m = 0; m < N; ++m) mine[m].add(n, u, l.F, v[m]);
