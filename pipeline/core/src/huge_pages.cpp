@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include <tbb/parallel_for.h>
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #else
@@ -12,6 +14,18 @@ namespace walkrad {
 
 namespace {
 size_t whole_pages(size_t bytes) { return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes; }
+
+// Each page written once, the 2 MiB blocks on all threads: the kernel zeroes a fresh page in the
+// thread that first writes it, and the vector's own fill is one thread (the aggregation correction's
+// arrays, made afresh each round: 3.5 s of one thread in the 150-room level's solve,
+// docs/performance.md). The bytes stay 0, as the mapping gave them.
+void first_touch(void* p, size_t size) {
+  constexpr size_t kSmallPage = 4096;
+  tbb::parallel_for(size_t(0), size / kHugePageBytes, [&](size_t block) {
+    volatile char* at = static_cast<char*>(p) + block * kHugePageBytes;
+    for (size_t o = 0; o < kHugePageBytes; o += kSmallPage) at[o] = 0;
+  });
+}
 }  // namespace
 
 void* allocate_huge(size_t bytes) {
@@ -27,6 +41,7 @@ void* allocate_huge(size_t bytes) {
   if (end > aligned + size) munmap(reinterpret_cast<void*>(aligned + size), end - (aligned + size));
   void* p = reinterpret_cast<void*>(aligned);
   madvise(p, size, MADV_HUGEPAGE);  // advice: ignored where the kernel has no huge pages to give
+  first_touch(p, size);
   return p;
 #else
   void* p = std::aligned_alloc(kHugePageBytes, size);

@@ -20,6 +20,7 @@
 #include "walkrad/core/rounding.h"
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/hierarchical/cluster_radiosity.h"
+#include "walkrad/hierarchical/hierarchy_walk.h"
 #include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad::hierarchical_detail {
@@ -32,12 +33,12 @@ void Solver::update_scales() {
   const size_t count = h_.nodes().size();
   weight_.assign(count, importance_ ? 0.0f : 1.0f);
   if (importance_) {
-    for (size_t i = count; i-- > 0;) {
-      const HNode& n = h_[uint32_t(i)];
+    nodes_bottom_up(h_, [&](uint32_t k) {  // in parallel: a maximum is the same in any order
+      const HNode& n = h_[k];
       const double I = direct_weights_ ? n.R : n.I;
-      if (n.child_count == 0 && n.area > 0 && seen_density_ > 0) weight_[i] = float(std::min(1.0, I / (n.area * seen_density_)));
-      if (n.parent >= 0) weight_[size_t(n.parent)] = std::max(weight_[size_t(n.parent)], weight_[i]);
-    }
+      if (n.child_count == 0 && n.area > 0 && seen_density_ > 0) weight_[k] = float(std::min(1.0, I / (n.area * seen_density_)));
+      for (uint32_t c = 0; c < n.child_count; ++c) weight_[k] = std::max(weight_[k], weight_[h_.child(n, c)]);
+    });
   }
   // Emitters are left out, as the exposure leaves them out (a light may clip to white), unless the
   // scene holds nothing else (a furnace).
@@ -78,17 +79,19 @@ double Solver::tolerance(uint32_t i) const {
 }
 
 void Solver::measure_spread() {
-  // Children come after their parents: one pass from the end gathers every subtree's range.
+  // Every subtree's range, each node after its children (in parallel: a minimum and a maximum are
+  // the same in any order).
   const size_t n = h_.nodes().size();
   std::vector<float> lo(n, INFINITY), hi(n, -INFINITY);
-  for (size_t i = n; i-- > 0;) {
-    const HNode& node = h_[uint32_t(i)];
-    if (node.child_count == 0) lo[i] = hi[i] = float(luminance(sent(node)));
-    if (node.parent >= 0) {
-      lo[size_t(node.parent)] = std::min(lo[size_t(node.parent)], lo[i]);
-      hi[size_t(node.parent)] = std::max(hi[size_t(node.parent)], hi[i]);
+  nodes_bottom_up(h_, [&](uint32_t k) {
+    const HNode& node = h_[k];
+    if (node.child_count == 0) lo[k] = hi[k] = float(luminance(sent(node)));
+    for (uint32_t c = 0; c < node.child_count; ++c) {
+      const uint32_t child = h_.child(node, c);
+      lo[k] = std::min(lo[k], lo[child]);
+      hi[k] = std::max(hi[k], hi[child]);
     }
-  }
+  });
   spread_.assign(n, 0.0f);
   for (size_t i = 0; i < n; ++i)
     if (hi[i] >= lo[i]) spread_[i] = hi[i] - lo[i];

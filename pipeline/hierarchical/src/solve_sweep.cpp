@@ -3,6 +3,7 @@
 #include "solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -10,6 +11,7 @@
 
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
+#include "walkrad/hierarchical/hierarchy_walk.h"
 #include "walkrad/hierarchical/link_transport.h"
 
 namespace walkrad::hierarchical_detail {
@@ -38,10 +40,18 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance, double rela
     if (divisible_) {
       shoot_importance_exactly();
     } else {
-      for (HNode& n : nodes) n.Ig = 0;
-      for (const HNode& n : nodes)  // sequential: sums in a fixed order
+      // Sequential: sums in a fixed order. Into an array of their own, not the nodes' Ig: each link
+      // adds to a source far from the last, and a node is hundreds of bytes (a cache miss each).
+      std::vector<double>& shot = shot_scratch_;
+      shot.assign(nodes.size(), 0.0);
+      for (const HNode& n : nodes) {
+        const double rho = luminance(n.rho);
         for (const Link& l : n.links)
-          if (carries(l)) nodes[l.source].Ig += luminance(n.rho) * l.F * n.I;
+          if (carries(l)) shot[l.source] += rho * l.F * n.I;
+      }
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) nodes[k].Ig = shot[k];
+      });
     }
     push_pull_importance(h_.root(), 0.0);
   }
@@ -109,6 +119,16 @@ void Solver::plan_gather_blocks() {
     stack.push_back(UINT32_MAX);
     for (uint32_t c = n.child_count; c-- > 0;) stack.push_back(h_.child(n, c));
   }
+  // Each node's items: from its first to its last (a cluster), or its polygon's. Apart from the nodes:
+  // the links' sources are read one after another at random, and a node is hundreds of bytes.
+  std::vector<std::array<uint32_t, 2>> span(h_.nodes().size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, span.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const HNode& n = h_[uint32_t(k)];
+      span[k] = n.cluster ? std::array<uint32_t, 2>{first[n.tree_node], last[n.tree_node]}
+                          : std::array<uint32_t, 2>{polygon_item[n.polygon], polygon_item[n.polygon]};
+    }
+  });
   // An item joins the open block when none of its links reads a node the walk changes between the
   // block's start and the item's turn: gathered at the block's start, it reads what it would read at
   // its turn, and every sweep gives the same bytes as one node at a time.
@@ -119,10 +139,8 @@ void Solver::plan_gather_blocks() {
   auto reads_open_block = [&](size_t from, uint32_t t) {
     for (size_t k = from; k < block_nodes_.size(); ++k)
       for (const Link& l : h_[block_nodes_[k]].links) {
-        const HNode& source = h_[l.source];
-        const uint32_t lo = source.cluster ? first[source.tree_node] : polygon_item[source.polygon];
-        const uint32_t hi = source.cluster ? last[source.tree_node] : lo;
-        if (lo < t && hi >= open) return true;
+        if (!carries(l)) continue;  // gather passes over it: whatever its source holds, it adds 0
+        if (span[l.source][0] < t && span[l.source][1] >= open) return true;
       }
     return false;
   };
@@ -219,11 +237,21 @@ double Solver::push_pull_importance(uint32_t i, double down) {
     const double through = max_component(tau) > 0 ? luminance(tau) * twin_importance(h_[i]) : 0.0;
     return h_[i].I = h_[i].R + total + through;
   }
+  const HNode& n = h_[i];
+  const double area = n.area;
+  auto child = [&](uint32_t k) {
+    const uint32_t c = h_.child(n, k);
+    return push_pull_importance(c, area > 0 ? total * h_[c].area / area : 0.0);
+  };
   double sum = 0;
-  const double area = h_[i].area;
-  for (uint32_t k = 0; k < h_[i].child_count; ++k) {
-    const uint32_t c = h_.child(h_[i], k);
-    sum += push_pull_importance(c, area > 0 ? total * h_[c].area / area : 0.0);
+  // A large cluster's subtrees on other threads (hierarchy_walk.h), their sums added in child order:
+  // the bits of the serial walk. Not with twins, whose leaves read their twin's I as last pushed.
+  if (!s_.twins && n.cluster && h_.polygon_count(n) >= kParallelPolygons) {
+    std::vector<double> part(n.child_count);
+    tbb::parallel_for(uint32_t(0), n.child_count, [&](uint32_t k) { part[k] = child(k); });
+    for (double v : part) sum += v;
+  } else {
+    for (uint32_t k = 0; k < n.child_count; ++k) sum += child(k);
   }
   return h_[i].I = sum;
 }

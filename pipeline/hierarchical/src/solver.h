@@ -460,6 +460,7 @@ class Solver {
   std::vector<float> emitted_;    // by node: the luminance of its leaves' emission as sent, area mean (measure_spread)
   std::vector<float> weight_;     // by node: its display weight (update_scales)
   std::vector<DirectionalIrradiance> cube_;  // by cluster (HNode::tree_node): its own links' gather
+  std::vector<double> shot_scratch_;         // by node: the importance a sweep shoots (solve_sweep)
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   bool importance_ = false;

@@ -3,8 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 
 #include "walkrad/core/rounding.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 namespace walkrad {
 
@@ -15,6 +20,8 @@ Bounds polygon_bounds(const Polygon& p) {
 }
 
 namespace {
+
+constexpr uint32_t kParallelBuild = 16384;  // polygons under a node whose halves go to two threads
 
 struct Builder {
   const Scene& scene;
@@ -30,9 +37,20 @@ struct Builder {
 
   long long steps(double x) const { return std::llround(x / quantum); }
 
-  int32_t build(uint32_t first, uint32_t count) {
-    const int32_t index = int32_t(tree.nodes.size());
-    tree.nodes.emplace_back();
+  // Nodes below (and with) a node over `count` polygons, by count: the split depends on the count
+  // alone, and a level's counts differ by 1 at most (a few entries, filled before the build).
+  std::map<uint32_t, size_t> sizes;
+  size_t count_nodes(uint32_t count) {
+    if (const auto it = sizes.find(count); it != sizes.end()) return it->second;
+    const size_t n = count > max_leaf ? 1 + count_nodes(count / 2) + count_nodes(count - count / 2) : 1;
+    return sizes[count] = n;
+  }
+  size_t subtree(uint32_t count) const { return sizes.at(count); }
+
+  // The node at `index` (depth first, child 0 first: its subtree fills [index, index + subtree)).
+  // Halves of many polygons are built on two threads: they touch disjoint polygons and nodes, and
+  // each node's index is fixed by the counts, so the tree is the one a single thread builds.
+  void build(uint32_t first, uint32_t count, int32_t index) {
     ClusterNode node;
     node.first = first;
     node.count = count;
@@ -57,11 +75,18 @@ struct Builder {
         const long long ka = key[a][size_t(axis)], kb = key[b][size_t(axis)];
         return ka < kb || (ka == kb && a < b);
       });
-      node.child[0] = build(first, count / 2);
-      node.child[1] = build(first + count / 2, count - count / 2);
+      node.child[0] = index + 1;
+      node.child[1] = int32_t(index + 1 + subtree(count / 2));
+      auto low = [&] { build(first, count / 2, node.child[0]); };
+      auto high = [&] { build(first + count / 2, count - count / 2, node.child[1]); };
+      if (count >= kParallelBuild) {
+        tbb::parallel_invoke(low, high);
+      } else {
+        low();
+        high();
+      }
     }
-    tree.nodes[index] = node;
-    return index;
+    tree.nodes[size_t(index)] = node;
   }
 };
 
@@ -73,12 +98,14 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
   tree.polygons.resize(n);
   tree.polygon_bounds.resize(n);
   Builder b{scene, tree, std::vector<Vec3>(n), std::max(1u, max_leaf), Vec3{}, 0.0, std::vector<double>(n), {}};
-  for (uint32_t i = 0; i < n; ++i) {
-    tree.polygons[i] = i;
-    tree.polygon_bounds[i] = polygon_bounds(scene.polygons[i]);
-    b.centroid[i] = polygon_centroid(scene.polygons[i]);
-    b.area[i] = polygon_area(scene.polygons[i]);
-  }
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t i = r.begin(); i != r.end(); ++i) {
+      tree.polygons[i] = i;
+      tree.polygon_bounds[i] = polygon_bounds(scene.polygons[i]);
+      b.centroid[i] = polygon_centroid(scene.polygons[i]);
+      b.area[i] = polygon_area(scene.polygons[i]);
+    }
+  });
   Bounds all;
   for (uint32_t i = 0; i < n; ++i) all.extend(tree.polygon_bounds[i]);
   if (n > 0) {
@@ -88,8 +115,10 @@ ClusterTree build_cluster_tree(const Scene& scene, uint32_t max_leaf) {
   b.key.resize(n);
   for (uint32_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) b.key[i][size_t(a)] = b.steps(b.centroid[i][a] - b.origin[a]);
-  tree.nodes.reserve(2 * (n / b.max_leaf + 1));
-  if (n > 0) b.build(0, n);
+  if (n > 0) {
+    tree.nodes.resize(b.count_nodes(n));
+    b.build(0, n, 0);
+  }
   tree.slot.resize(n);
   for (uint32_t i = 0; i < n; ++i) tree.slot[tree.polygons[i]] = i;
   return tree;
