@@ -9,6 +9,24 @@
 
 namespace walkrad {
 
+Vec3 view_pixel_ray(const Viewpoint& v, int grid, int x, int y, double& weight) {
+  const double sx = 2.0 * (x + 0.5) / grid - 1.0, sy = 2.0 * (y + 0.5) / grid - 1.0;
+  const Vec3 d = view_ray_direction(v, sx, sy);
+  const double c = dot(d, v.forward);
+  weight = c * c * c;  // solid angle of a pixel of the image plane
+  return d;
+}
+
+double view_weight_total(const Viewpoint& v, int grid) {
+  double total = 0, weight = 0;
+  for (int y = 0; y < grid; ++y)
+    for (int x = 0; x < grid; ++x) {
+      view_pixel_ray(v, grid, x, y, weight);
+      total += weight;
+    }
+  return total;
+}
+
 std::vector<ViewHit> cast_view_rays(const std::vector<Viewpoint>& views, const RayScene& rays, int grid, int max_views,
                                     uint64_t& rays_cast) {
   const size_t count = std::min<size_t>(views.size(), size_t(std::max(1, max_views)));
@@ -21,10 +39,8 @@ std::vector<ViewHit> cast_view_rays(const std::vector<Viewpoint>& views, const R
     double total = 0;
     for (int y = 0; y < grid; ++y)
       for (int x = 0; x < grid; ++x) {
-        const double sx = 2.0 * (x + 0.5) / grid - 1.0, sy = 2.0 * (y + 0.5) / grid - 1.0;
-        const Vec3 d = view_ray_direction(v, sx, sy);
-        const double c = dot(d, v.forward);
-        const double weight = c * c * c;  // solid angle of a pixel of the image plane
+        double weight = 0;
+        const Vec3 d = view_pixel_ray(v, grid, x, y, weight);
         total += weight;
         const RayScene::Hit hit = rays.intersect(v.position, d);
         if (hit.hit) out.push_back({hit.polygon, hit.position, weight, uint32_t(index)});

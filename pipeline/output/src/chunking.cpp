@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <tbb/parallel_for.h>
+
 #include "walkrad/hierarchical/view_importance.h"
 
 namespace walkrad {
@@ -75,18 +77,28 @@ std::vector<std::vector<float>> chunk_importance(const std::vector<Viewpoint>& v
                                                  uint64_t& rays_cast) {
   std::vector<std::vector<float>> importance(chunks, std::vector<float>(views.size(), 0.0f));
   if (views.empty()) return importance;
-  // Every viewpoint (no subset), a batch of views at a time: a hit's weight is its share of its view
-  // over the batch's size, and the hits of all views at once would take 48 B × grid² per view (750 MB
-  // for 240 views at 256²). Sums per (chunk, view) are in the same order whatever the batch.
+  // Every viewpoint (no subset), each on its own and its hits summed as they come, in pixel order:
+  // kept as a list first (cast_view_rays), a batch of 16 views' hits was 48 B × grid² a view of fresh
+  // pages, most of this phase's time on the 150-room level (docs/performance.md). A hit's weight is
+  // still its share of its view over the size of its batch of 16, as it was: the same bits.
   constexpr size_t kBatch = 16;
-  std::vector<double> sum(chunks * views.size(), 0.0);
-  for (size_t base = 0; base < views.size(); base += kBatch) {
-    const std::vector<Viewpoint> batch(views.begin() + long(base), views.begin() + long(std::min(base + kBatch, views.size())));
-    for (const ViewHit& hit : cast_view_rays(batch, rays, grid, int(batch.size()), rays_cast))
-      sum[polygon_chunk[hit.polygon] * views.size() + base + hit.view] += hit.weight * double(batch.size());
-  }
+  const size_t V = views.size();
+  std::vector<double> sum(V * chunks, 0.0);  // by view, then chunk
+  tbb::parallel_for(size_t(0), V, [&](size_t v) {  // each view writes its own row
+    const Viewpoint& view = views[v];
+    const double batch = double(std::min(v / kBatch * kBatch + kBatch, V) - v / kBatch * kBatch);
+    const double share = view_weight_total(view, grid) * batch;
+    for (int y = 0; y < grid; ++y)
+      for (int x = 0; x < grid; ++x) {
+        double weight = 0;
+        const Vec3 d = view_pixel_ray(view, grid, x, y, weight);
+        const RayScene::Hit hit = rays.intersect(view.position, d);
+        if (hit.hit) sum[v * chunks + polygon_chunk[hit.polygon]] += weight / share * batch;
+      }
+  });
+  rays_cast += uint64_t(V) * uint64_t(grid) * uint64_t(grid);
   for (size_t c = 0; c < chunks; ++c)
-    for (size_t v = 0; v < views.size(); ++v) importance[c][v] = float(sum[c * views.size() + v]);
+    for (size_t v = 0; v < V; ++v) importance[c][v] = float(sum[v * chunks + c]);
   return importance;
 }
 
