@@ -28,7 +28,7 @@ void first_touch(void* p, size_t size) {
 }
 }  // namespace
 
-void* allocate_huge(size_t bytes) {
+void* allocate_huge(size_t bytes, bool touch) {
   const size_t size = whole_pages(bytes);
 #if defined(__linux__)
   // Mapped 2 MiB larger and trimmed to a 2 MiB boundary: a huge page needs an aligned range.
@@ -41,7 +41,7 @@ void* allocate_huge(size_t bytes) {
   if (end > aligned + size) munmap(reinterpret_cast<void*>(aligned + size), end - (aligned + size));
   void* p = reinterpret_cast<void*>(aligned);
   madvise(p, size, MADV_HUGEPAGE);  // advice: ignored where the kernel has no huge pages to give
-  first_touch(p, size);
+  if (touch) first_touch(p, size);
   return p;
 #else
   void* p = std::aligned_alloc(kHugePageBytes, size);

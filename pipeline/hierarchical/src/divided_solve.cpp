@@ -173,7 +173,7 @@ void Solver::share_gathered() {
 }
 
 void Solver::shoot_importance_exactly() {
-  std::vector<HNode>& nodes = h_.nodes();
+  HNodes& nodes = h_.nodes();
   // Each link's importance ρ_i F_ij I_i to its source, in units of 2^-k of a bound on the total (the
   // sum of their sizes, node by node in order: the same bound on every rank), as integers.
   // Cluster receivers' links are on every rank: rank 0 adds them (counts_links).

@@ -50,7 +50,7 @@ void move_links(Hierarchy& h, Send send, Take take) {
 uint64_t link_bytes(const Hierarchy& h) {
   // A walk over every node (a whole pass over the hierarchy's memory, noted each round): in parallel,
   // an integer sum being the same in any order.
-  const std::vector<HNode>& nodes = h.nodes();
+  const HNodes& nodes = h.nodes();
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, nodes.size(), 4096), uint64_t(0),
       [&](const tbb::blocked_range<size_t>& r, uint64_t bytes) {

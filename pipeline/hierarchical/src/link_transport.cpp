@@ -30,7 +30,7 @@ Vec3 abs3(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z
 template <class Vector, class F>
 void area_means(const Hierarchy& h, Vector& mean, F value) {
   using T = typename Vector::value_type;
-  const std::vector<HNode>& nodes = h.nodes();
+  const HNodes& nodes = h.nodes();
   mean.assign(nodes.size(), T{});
   nodes_bottom_up(h, [&](uint32_t k) {
     const HNode& n = nodes[k];
@@ -84,7 +84,7 @@ std::array<Vec3, N> seen_value(const Hierarchy& h, const Link& l, const HNode& r
 // Into d, whose memory is kept (aggregation_correction's callers keep it between calls).
 template <size_t N, class V>
 void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
-  const std::vector<HNode>& nodes = h.nodes();
+  const HNodes& nodes = h.nodes();
   d.H.assign(nodes.size(), std::array<Vec3, N>{});
   d.row.assign(nodes.size(), 0.0);
   // Each element root takes what the clusters above it deliver to its normal (a cube kept for every
@@ -181,7 +181,7 @@ struct TransportBuffers {
 // the walk needs are held (each fresh page a fault: docs/performance.md).
 template <size_t N, class X>
 const Delivery<N>& transport(const Hierarchy& h, X x, TransportBuffers<N>& t) {
-  const std::vector<HNode>& nodes = h.nodes();
+  const HNodes& nodes = h.nodes();
   HugeVector<Values<N>>& sent = t.sent;
   area_means(h, sent, [&](const HNode& n, size_t) {
     const std::array<Vec3, N> at = x(n);
@@ -236,7 +236,7 @@ double received_area(const Hierarchy& h, uint32_t receiver, const Link& l, W wei
 // links (p ← q) leaving q, with receive factors receive(node).
 template <class F>
 std::vector<double> column_sums(const Hierarchy& h, F receive) {
-  const std::vector<HNode>& nodes = h.nodes();
+  const HNodes& nodes = h.nodes();
   std::vector<double> mean;
   area_means(h, mean, [&](const HNode& n, size_t) { return receive(n); });
   std::vector<double> per_node(nodes.size(), 0.0);
@@ -286,7 +286,7 @@ std::vector<Vec3> emitted_as_sent(const Hierarchy& h) {
 }
 
 void pull_up_radiosity(Hierarchy& h) {
-  std::vector<HNode>& nodes = h.nodes();
+  HNodes& nodes = h.nodes();
   nodes_bottom_up(h, [&](uint32_t k) {
     HNode& n = nodes[k];
     if (n.child_count == 0) {
@@ -306,7 +306,7 @@ void pull_up_radiosity(Hierarchy& h) {
 
 BalanceStats balance_closed_transport(Hierarchy& h, double tolerance, int max_iterations) {
   BalanceStats stats;
-  const std::vector<HNode>& nodes = h.nodes();
+  const HNodes& nodes = h.nodes();
   // Leaves whose unscaled row or column sum is far from 1 are not a matter of distribution: a piece
   // hidden under furniture (no link reaches it) or coincident surfaces. They keep factors of 1, so
   // that the rest converges (their bounded factors would fight the others' and never settle).
@@ -377,7 +377,7 @@ CorrectionBuffers::~CorrectionBuffers() = default;
 double aggregation_correction(Hierarchy& h, double floor, double* level, CorrectionBuffers* buffers) {
   std::optional<CorrectionBuffers> own;
   CorrectionBuffers::Held& held = *(buffers ? buffers : &own.emplace())->held;
-  std::vector<HNode>& nodes = h.nodes();
+  HNodes& nodes = h.nodes();
   // At a leaf, b = B and v = B − E − ρD (what the sweeps reflected), read from the node where needed
   // (v from its B before this call changes it): two node-sized arrays fewer.
   const auto reflected = [](const HNode& n) { return n.B - n.emission - mul(n.rho, n.D); };

@@ -29,7 +29,7 @@ void Hierarchy::load_state(ByteReader& in) {
   // scene or tree shows itself here.
   if (count < nodes_.size()) throw ByteFormatError("the saved hierarchy is smaller than the scene's");
   if (count > in.remaining() / sizeof(HNodeValues)) throw ByteFormatError("truncated (the nodes run past the end)");
-  std::vector<HNode> nodes(count);
+  HNodes nodes(count);
   for (size_t i = 0; i < count; ++i) {
     static_cast<HNodeValues&>(nodes[i]) = in.get<HNodeValues>();
     in.get_vector(nodes[i].links);

@@ -18,7 +18,7 @@ namespace walkrad::hierarchical_detail {
 
 double Solver::solve_sweep(IterationStats& is, bool with_importance, double relaxation) {
   relax_ = relaxation;
-  std::vector<HNode>& nodes = h_.nodes();
+  HNodes& nodes = h_.nodes();
   // What each cluster sends by direction, from the last sweep's radiosity; Gauss-Seidel sweeps then
   // update a cluster's as its surfaces are updated (push_pull), and gather at a cluster as they reach
   // it. Read from the last sweep, a lamp's top 1 cm under a ceiling and the ceiling above it, linked

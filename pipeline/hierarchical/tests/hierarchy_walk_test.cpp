@@ -79,7 +79,7 @@ TEST(HierarchyWalk, TopDownHandsEachClusterItsParentsState) {
 TEST(HierarchyWalk, PullUpAndFacingRadiosityGiveTheSerialPassesBits) {
   Cubes c;
   Hierarchy& h = c.h;
-  std::vector<HNode> serial = h.nodes();
+  HNodes serial = h.nodes();
   for (size_t k = serial.size(); k-- > 0;) {
     HNode& n = serial[k];
     if (n.child_count == 0) {

@@ -123,7 +123,7 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
     }
   });
   grid.reset();
-  HugeVector<uint32_t> boundary, boundary_begin{0};
+  GrowingHugeVector<uint32_t> boundary, boundary_begin{0};  // grown: pages as they are used
   for (std::vector<uint32_t>& b : face_boundary) {
     boundary.insert(boundary.end(), b.begin(), b.end());
     boundary_begin.push_back(uint32_t(boundary.size()));
@@ -169,7 +169,8 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
   // mesh phase 1.20 -> 0.79 s, 1.031 -> 1.033% weighted RMS; lamp-room 1.253 -> 1.252%; test
   // ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
   // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
-  HugeVector<uint32_t> slot_point, slot_group, slot_next, face_slots(boundary.size());
+  GrowingHugeVector<uint32_t> slot_point, slot_group, slot_next;  // grown: pages as they are used
+  HugeVector<uint32_t> face_slots(boundary.size());
   HugeVector<uint32_t> first_slot(points.size(), UINT32_MAX);
   for (size_t i = 0; i < faces.size(); ++i) {
     const uint32_t g = group[faces[i].polygon];
@@ -298,7 +299,8 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
   // when T-vertices lie on its edges). The readings are spent, and the arrays are made to their
   // sizes, not grown by doubling (with the frees, the 150-room level's peak 4,298 -> 4,195 MiB).
   for (HugeVector<Vec3>* spent : {&value, &rho, &toward}) HugeVector<Vec3>().swap(*spent);
-  for (HugeVector<uint32_t>* spent : {&reader, &slot_group, &slot_next, &first_slot}) HugeVector<uint32_t>().swap(*spent);
+  for (HugeVector<uint32_t>* spent : {&reader, &first_slot}) HugeVector<uint32_t>().swap(*spent);
+  for (GrowingHugeVector<uint32_t>* spent : {&slot_group, &slot_next}) GrowingHugeVector<uint32_t>().swap(*spent);
   HugeVector<std::array<uint32_t, 4>>().swap(corner);
   size_t vertices = slots, triangles = 0;
   for (size_t i = 0; i < faces.size(); ++i) {

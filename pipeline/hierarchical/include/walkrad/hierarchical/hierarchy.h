@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "walkrad/core/byte_buffer.h"
+#include "walkrad/core/huge_pages.h"
 #include "walkrad/formats/scene.h"
 #include "walkrad/scene/cluster_tree.h"
 
@@ -100,6 +101,11 @@ struct alignas(64) HNode : HNodeValues {
   std::vector<Link> links;  // links where this node receives
 };
 
+// A large level's nodes are a gigabyte, reserved at the start and read at random by every link: on
+// huge pages, a fault for each 2 MiB as they are made (not each 4 KiB: the hierarchy's constructor
+// spent a second of one thread in page faults at 150 rooms) and one TLB entry for 3,000 nodes.
+using HNodes = GrowingHugeVector<HNode>;
+
 // A primary-ray hit from a viewpoint: where a walkthrough looks, and how much (its share of the
 // views' solid angle). Summed over an element, the hits give its direct importance R.
 struct ViewHit {
@@ -124,8 +130,8 @@ class Hierarchy {
 
   const Scene& scene() const { return scene_; }
   const ClusterTree& tree() const { return tree_; }
-  std::vector<HNode>& nodes() { return nodes_; }
-  const std::vector<HNode>& nodes() const { return nodes_; }
+  HNodes& nodes() { return nodes_; }
+  const HNodes& nodes() const { return nodes_; }
   HNode& operator[](uint32_t i) { return nodes_[i]; }
   const HNode& operator[](uint32_t i) const { return nodes_[i]; }
   uint32_t root() const { return 0; }
@@ -181,7 +187,7 @@ class Hierarchy {
   const Scene& scene_;
   const ClusterTree& tree_;
   bool sample_textures_ = false;
-  std::vector<HNode> nodes_;
+  HNodes nodes_;
   std::vector<uint32_t> children_;
   std::vector<double> area_prefix_;  // prefix sums of polygon areas in ClusterTree::polygons order
   // Polygon normals in the same order, for a cluster's samples. Each equals its polygon's root
