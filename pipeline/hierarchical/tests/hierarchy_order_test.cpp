@@ -42,5 +42,38 @@ TEST(Hierarchy, ClustersAreNumberedByTreeNodeAndMadeInPreorder) {
   EXPECT_EQ(h.made_at_start(), h.cluster_count() + scene.polygons.size());
 }
 
+// Hierarchy::sample names the child holding the point it draws from the tree's layout, not from the
+// children's nodes: every point drawn from a cluster lies in the child it names (within its bounds,
+// on the surface of that child's polygons), a leaf cluster's elements and a node's two halves alike.
+TEST(Hierarchy, SampleNamesTheChildThatHoldsThePoint) {
+  Scene scene;
+  scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
+  for (int k = 0; k < 40; ++k) test::add_cube(scene, {1.5 * (k % 8), 0.3 * (k % 3), 1.5 * (k / 8)}, 1.0 + 0.1 * (k % 4));
+  const ClusterTree tree = build_cluster_tree(scene);
+  const Hierarchy h(scene, tree);
+  size_t leaf_clusters = 0;
+  for (uint32_t k = 0; k < h.nodes().size(); ++k) {
+    const HNode& n = h[k];
+    if (!n.cluster) continue;
+    leaf_clusters += tree.nodes[n.tree_node].leaf();
+    for (int s = 0; s < 64; ++s) {
+      const double w = (s + 0.5) / 64, u = 0.37, v = 0.61;
+      Vec3 point, normal;
+      uint32_t child = UINT32_MAX;
+      h.sample(n, u, v, w, point, normal, &child);
+      ASSERT_LT(child, n.child_count) << "cluster " << k;
+      const HNode& kid = h[h.child(n, child)];
+      const Bounds& b = kid.bounds;
+      const double e = 1e-12 * (1 + length(point));
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_GE(point[a], b.lo[a] - e) << "cluster " << k << " sample " << s;
+        ASSERT_LE(point[a], b.hi[a] + e) << "cluster " << k << " sample " << s;
+      }
+      if (!kid.cluster) EXPECT_NEAR(dot(point - kid.shape.v[0], kid.normal), 0.0, 1e-12) << "cluster " << k;
+    }
+  }
+  EXPECT_GT(leaf_clusters, size_t(10));
+}
+
 }  // namespace
 }  // namespace walkrad

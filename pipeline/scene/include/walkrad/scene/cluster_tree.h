@@ -20,7 +20,7 @@ struct ClusterNode {
   double area = 0;          // total one-sided area of the polygons below
   uint32_t first = 0;       // polygons below: ClusterTree::polygons[first, first + count)
   uint32_t count = 0;
-  int32_t child[2] = {-1, -1};  // both -1 for a leaf
+  int32_t child[2] = {-1, -1};  // both -1 for a leaf; child 0 holds polygons [first, first + count / 2)
   bool leaf() const { return child[0] < 0; }
 };
 
