@@ -85,19 +85,32 @@ void Solver::store_links(PendingList& list) {
       if (kept(list[k])) normalize_shares(h_, list[k].receiver, list[k].share);
   });
   // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
-  // up to half of itself unused (docs/performance.md, "Links held at their size").
-  std::vector<uint32_t> added(h_.nodes().size(), 0);
+  // up to half of itself unused (docs/performance.md, "Links held at their size"). The kept links
+  // sorted by receiver first (a counting sort, in list order), so that the receivers fill their
+  // lists on all threads, each in list order as one thread filled them.
+  const size_t nodes = h_.nodes().size();
+  std::vector<uint32_t> begin(nodes + 1, 0);
   for (const Pending& p : list)
-    if (kept(p)) ++added[p.receiver];
-  for (size_t i = 0; i < added.size(); ++i)
-    if (added[i] > 0) h_[uint32_t(i)].links.reserve(h_[uint32_t(i)].links.size() + added[i]);
-  for (const Pending& p : list) {
-    if (!kept(p)) continue;
-    Link l{float(p.F), p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
-           uint16_t(std::min(p.samples, 65535))};
-    l.seen = p.seen;
-    h_[p.receiver].links.push_back(l);
-  }
+    if (kept(p)) ++begin[p.receiver + 1];
+  for (size_t i = 0; i < nodes; ++i) begin[i + 1] += begin[i];
+  std::vector<uint32_t> order(begin[nodes]), next(begin.begin(), begin.end() - 1);
+  for (size_t k = 0; k < list.size(); ++k)
+    if (kept(list[k])) order[next[list[k].receiver]++] = uint32_t(k);
+  std::vector<uint32_t>().swap(next);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes, 1024), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      if (begin[i] == begin[i + 1]) continue;
+      std::vector<Link>& links = h_[uint32_t(i)].links;
+      links.reserve(links.size() + (begin[i + 1] - begin[i]));
+      for (uint32_t k = begin[i]; k < begin[i + 1]; ++k) {
+        const Pending& p = list[order[k]];
+        Link l{float(p.F), p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
+               uint16_t(std::min(p.samples, 65535))};
+        l.seen = p.seen;
+        links.push_back(l);
+      }
+    }
+  });
 }
 
 void Solver::take_requests() {

@@ -3,7 +3,6 @@
 #include "solver.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -119,16 +118,6 @@ void Solver::plan_gather_blocks() {
     stack.push_back(UINT32_MAX);
     for (uint32_t c = n.child_count; c-- > 0;) stack.push_back(h_.child(n, c));
   }
-  // Each node's items: from its first to its last (a cluster), or its polygon's. Apart from the nodes:
-  // the links' sources are read one after another at random, and a node is hundreds of bytes.
-  std::vector<std::array<uint32_t, 2>> span(h_.nodes().size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, span.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) {
-      const HNode& n = h_[uint32_t(k)];
-      span[k] = n.cluster ? std::array<uint32_t, 2>{first[n.tree_node], last[n.tree_node]}
-                          : std::array<uint32_t, 2>{polygon_item[n.polygon], polygon_item[n.polygon]};
-    }
-  });
   // An item joins the open block when none of its links reads a node the walk changes between the
   // block's start and the item's turn: gathered at the block's start, it reads what it would read at
   // its turn, and every sweep gives the same bytes as one node at a time.
@@ -140,7 +129,10 @@ void Solver::plan_gather_blocks() {
     for (size_t k = from; k < block_nodes_.size(); ++k)
       for (const Link& l : h_[block_nodes_[k]].links) {
         if (!carries(l)) continue;  // gather passes over it: whatever its source holds, it adds 0
-        if (span[l.source][0] < t && span[l.source][1] >= open) return true;
+        const HNode& source = h_[l.source];
+        const uint32_t lo = source.cluster ? first[source.tree_node] : polygon_item[source.polygon];
+        const uint32_t hi = source.cluster ? last[source.tree_node] : lo;
+        if (lo < t && hi >= open) return true;
       }
     return false;
   };
