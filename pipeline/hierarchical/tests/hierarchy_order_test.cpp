@@ -1,8 +1,10 @@
 // The order the solve's walks over the hierarchy rely on.
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include "walkrad/hierarchical/hierarchy.h"
 #include "walkrad/scene/cluster_tree.h"
@@ -73,6 +75,33 @@ TEST(Hierarchy, SampleNamesTheChildThatHoldsThePoint) {
     }
   }
   EXPECT_GT(leaf_clusters, size_t(10));
+}
+
+// build_cluster_tree builds halves of 16,384 polygons or more on two threads, at indices fixed by the
+// counts: the same tree as on one thread, in preorder (child 0 next), child 0 holding the first half
+// of its node's slots (what Hierarchy::sample relies on).
+TEST(ClusterTree, OneThreadAndTwoBuildTheSameTree) {
+  Scene scene;
+  scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
+  for (int k = 0; k < 6000; ++k) test::add_cube(scene, {1.5 * (k % 60), 0.3 * (k % 7), 1.5 * (k / 60)}, 1.0);
+  ASSERT_GT(scene.polygons.size(), size_t(2 * 16384));
+  ClusterTree one, two;
+  tbb::task_arena(1).execute([&] { one = build_cluster_tree(scene); });
+  tbb::task_arena(2).execute([&] { two = build_cluster_tree(scene); });
+  ASSERT_EQ(one.nodes.size(), two.nodes.size());
+  EXPECT_EQ(one.polygons, two.polygons);
+  EXPECT_EQ(one.slot, two.slot);
+  for (size_t k = 0; k < one.nodes.size(); ++k) {
+    const ClusterNode &a = one.nodes[k], &b = two.nodes[k];
+    ASSERT_TRUE(a.first == b.first && a.count == b.count && a.child[0] == b.child[0] && a.child[1] == b.child[1]) << "node " << k;
+    ASSERT_EQ(std::memcmp(&a.bounds, &b.bounds, sizeof(Bounds)), 0) << "node " << k;
+    ASSERT_EQ(std::memcmp(&a.area, &b.area, sizeof(double)), 0) << "node " << k;
+    if (a.leaf()) continue;
+    EXPECT_EQ(a.child[0], int32_t(k + 1)) << "node " << k;
+    const ClusterNode &low = one.nodes[size_t(a.child[0])], &high = one.nodes[size_t(a.child[1])];
+    EXPECT_TRUE(low.first == a.first && low.count == a.count / 2) << "node " << k;
+    EXPECT_TRUE(high.first == a.first + a.count / 2 && high.count == a.count - a.count / 2) << "node " << k;
+  }
 }
 
 }  // namespace
