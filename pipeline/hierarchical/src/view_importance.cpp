@@ -17,16 +17,6 @@ Vec3 view_pixel_ray(const Viewpoint& v, int grid, int x, int y, double& weight) 
   return d;
 }
 
-double view_weight_total(const Viewpoint& v, int grid) {
-  double total = 0, weight = 0;
-  for (int y = 0; y < grid; ++y)
-    for (int x = 0; x < grid; ++x) {
-      view_pixel_ray(v, grid, x, y, weight);
-      total += weight;
-    }
-  return total;
-}
-
 std::vector<ViewHit> cast_view_rays(const std::vector<Viewpoint>& views, const RayScene& rays, int grid, int max_views,
                                     uint64_t& rays_cast) {
   const size_t count = std::min<size_t>(views.size(), size_t(std::max(1, max_views)));
@@ -35,7 +25,6 @@ std::vector<ViewHit> cast_view_rays(const std::vector<Viewpoint>& views, const R
     const size_t index = count == views.size() ? k : k * (views.size() - 1) / std::max<size_t>(count - 1, 1);
     const Viewpoint& v = views[index];
     std::vector<ViewHit>& out = per_view[k];
-    std::vector<double> w;
     double total = 0;
     for (int y = 0; y < grid; ++y)
       for (int x = 0; x < grid; ++x) {

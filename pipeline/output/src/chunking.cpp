@@ -1,6 +1,8 @@
 #include "walkrad/output/chunking.h"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 
@@ -77,24 +79,29 @@ std::vector<std::vector<float>> chunk_importance(const std::vector<Viewpoint>& v
                                                  uint64_t& rays_cast) {
   std::vector<std::vector<float>> importance(chunks, std::vector<float>(views.size(), 0.0f));
   if (views.empty()) return importance;
-  // Every viewpoint (no subset), each on its own and its hits summed as they come, in pixel order:
-  // kept as a list first (cast_view_rays), a batch of 16 views' hits was 48 B × grid² a view of fresh
-  // pages, most of this phase's time on the 150-room level (docs/performance.md). A hit's weight is
-  // still its share of its view over the size of its batch of 16, as it was: the same bits.
+  // Every viewpoint (no subset), each on its own, its hits kept as (chunk, weight) in a list per
+  // thread that is reused from view to view: listed afresh for a batch of 16 views (cast_view_rays,
+  // 48 B × grid² a view), their fresh pages were most of this phase on office-floor's 8 rooms
+  // (docs/performance.md). A hit's weight is still its share of its view over the size of its batch
+  // of 16, as it was: the same bits.
   constexpr size_t kBatch = 16;
   const size_t V = views.size();
   std::vector<double> sum(V * chunks, 0.0);  // by view, then chunk
   tbb::parallel_for(size_t(0), V, [&](size_t v) {  // each view writes its own row
     const Viewpoint& view = views[v];
-    const double batch = double(std::min(v / kBatch * kBatch + kBatch, V) - v / kBatch * kBatch);
-    const double share = view_weight_total(view, grid) * batch;
+    thread_local std::vector<std::pair<uint32_t, double>> hits;
+    hits.clear();
+    double total = 0;
     for (int y = 0; y < grid; ++y)
       for (int x = 0; x < grid; ++x) {
         double weight = 0;
         const Vec3 d = view_pixel_ray(view, grid, x, y, weight);
+        total += weight;
         const RayScene::Hit hit = rays.intersect(view.position, d);
-        if (hit.hit) sum[v * chunks + polygon_chunk[hit.polygon]] += weight / share * batch;
+        if (hit.hit) hits.push_back({polygon_chunk[hit.polygon], weight});
       }
+    const double batch = double(std::min(v / kBatch * kBatch + kBatch, V) - v / kBatch * kBatch);
+    for (const auto& [chunk, weight] : hits) sum[v * chunks + chunk] += weight / (total * batch) * batch;
   });
   rays_cast += uint64_t(V) * uint64_t(grid) * uint64_t(grid);
   for (size_t c = 0; c < chunks; ++c)
