@@ -4,7 +4,9 @@
 build/bench/walkrad_level_rays_bench (importance-driven; view-independent too with --vi), and prints
 the table for docs/performance.md: per phase seconds, rays and peak memory, and the solve's rays per
 second against a bare rtcOccluded1 loop over a sample of the same rays on as many threads, and against
-the same sample cast as the solve casts it (each link's rays in one rtcOccluded1M call, coherent).
+the same sample cast as the solve casts it (each link's rays in one rtcOccluded1M call, coherent);
+then, for each bake, its solve's rounds: links made, rays, seconds, and rays per second against the
+same bare loop (report.json's solver.rounds).
 
 Usage: bench/large_level.py [--build BUILD] [--rooms 32 64 150] [--vi] [--threads 2] [--every 1024] [--work DIR]
 One bake per level and mode, as long as the bake takes (the 150-room level: minutes to a quarter of an
@@ -32,6 +34,7 @@ os.makedirs(work, exist_ok=True)
 print("| rooms | mode | links | phase: seconds / rays / peak MiB | solve rays/s | bare loop rays/s | ratio | "
       "batched loop rays/s | ratio |")
 print("| ---: | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: |")
+by_round = []
 for rooms in args.rooms:
     level = os.path.join(work, f"office-{rooms}")
     # The generator names a level of other than 8 rooms by its size.
@@ -50,3 +53,13 @@ for rooms in args.rooms:
         print(f"| {rooms} | {mode} | {r['links']:,} | {phases} | {r['solve_rays_per_s'] / 1e6:.2f} M | "
               f"{r['bare_rays_per_s'] / 1e6:.2f} M | {r['solve_over_bare']:.2f} | {r['batched_rays_per_s'] / 1e6:.2f} M | "
               f"{r['solve_over_batched']:.2f} |", flush=True)
+        by_round.append((rooms, mode, r["rounds"]))
+
+print()
+print("| rooms | mode | round | links made | rays | seconds | rays/s | of the bare loop |")
+print("| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+for rooms, mode, rounds in by_round:
+    for k, t in enumerate(rounds, 1):
+        seconds = f"{t['seconds']:.1f}" if t["seconds"] is not None else "-"
+        print(f"| {rooms} | {mode} | {k} | {t['new_links']:,} | {t['rays'] / 1e6:.1f} M | {seconds} | "
+              f"{t['rays_per_s'] / 1e6:.2f} M | {t['over_bare']:.2f} |")

@@ -40,6 +40,18 @@ plain = os.path.join(work, "plain")
 if bake(plain).returncode != 0:
     sys.exit("FAIL: the plain bake failed")
 
+
+def round_seconds(out):
+    report = json.load(open(os.path.join(out, "report.json")))
+    solve = sum(p["seconds"] for p in report["phases"] if p["name"] == "solve")
+    return [r["seconds"] for r in report["solver"]["rounds"]], solve
+
+
+# Each round's wall time in report.json: positive, within the solve phase's.
+seconds, solve = round_seconds(plain)
+if not seconds or any(t is None or t <= 0 for t in seconds) or sum(seconds) > solve + 1e-3:
+    failures.append(f"report.json's round seconds {seconds} against a solve of {solve} s")
+
 # Checkpointing alone changes nothing, and the checkpoint goes once the bake is written.
 through, cp = os.path.join(work, "through"), os.path.join(work, "cp-through")
 r = bake(through, "--checkpoint", cp)
@@ -64,6 +76,10 @@ for kill_ranks, round_, resume_ranks in ((1, 3, 1), (2, 3, 1), (1, 5, 2)):
           f"{'byte-identical' if ok else 'DIFFERS'}")
     if not ok or resumed != round_ or os.path.exists(os.path.join(cp, "solve.checkpoint")):
         failures.append(f"{name}: resumed: exit {r.returncode}, same {ok}, resumed after {resumed}: {r.stderr.strip()[-300:]}")
+    else:  # the rounds read back have no time of this process; the rest have theirs
+        seconds, _ = round_seconds(out)
+        if any(t is not None for t in seconds[:round_]) or any(t is None or t <= 0 for t in seconds[round_:]):
+            failures.append(f"{name}: resumed: round seconds {seconds}")
 
 # With --solver jacobi a bake over several ranks divides its links, but not under --checkpoint (the file
 # holds every link): killed over 2 ranks after round 3 and resumed in one process, it is still the Jacobi

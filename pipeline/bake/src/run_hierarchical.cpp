@@ -145,6 +145,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   const auto t0 = Clock::now();
   auto round_start = t0;
   uint64_t previous_new = 0, previous_rss = resident_memory_mb();
+  // Each round's wall time, by round (report.json; none for the rounds a resumed bake read back): the
+  // rounds against their rays show where the solve's own work is (docs/performance.md).
+  std::vector<double> round_seconds;
   auto on_round = [&](const IterationStats& it) {
     const std::string round = std::to_string(stats.iterations.size());
     phases.check("solve round " + round);
@@ -164,7 +167,10 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     }
     previous_rss = rss;
     const auto now = Clock::now();
-    const double left = refinement_seconds_left(previous_new, it.new_links, std::chrono::duration<double>(now - round_start).count());
+    const double seconds = std::chrono::duration<double>(now - round_start).count();
+    round_seconds.resize(stats.iterations.size(), -1.0);
+    if (!round_seconds.empty()) round_seconds.back() = seconds;
+    const double left = refinement_seconds_left(previous_new, it.new_links, seconds);
     previous_new = it.new_links;
     round_start = now;
     if (!s.progress) return;
@@ -249,11 +255,15 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     if (!n.cluster && !n.child_count && !n.emission.x && !n.emission.y && !n.emission.z) lum.push_back(luminance(n.B) / kPi);
   r.surface_exposure = exposure_for(std::move(lum));
   json rounds = json::array();
-  for (const IterationStats& it : stats.iterations)
+  for (size_t k = 0; k < stats.iterations.size(); ++k) {
+    const IterationStats& it = stats.iterations[k];
+    const double seconds = k < round_seconds.size() ? round_seconds[k] : -1.0;
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},
+                      {"seconds", seconds >= 0 ? json(seconds) : json(nullptr)},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
                       {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
+  }
   r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast},
               {"probed_pairs", stats.probed_pairs}, {"probe_hidden_pairs", stats.probe_hidden}, {"probe_rays", stats.probe_rays},
               {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
