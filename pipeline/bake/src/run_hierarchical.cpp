@@ -145,8 +145,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   const auto t0 = Clock::now();
   auto round_start = t0;
   uint64_t previous_new = 0, previous_rss = resident_memory_mb();
-  // Each round's wall time, by round (report.json; none for the rounds a resumed bake read back): the
-  // rounds against their rays show where the solve's own work is (docs/performance.md).
+  // The wall time of each round run here (report.json; the rounds a resumed bake read back come first
+  // and have none): the rounds against their rays show where the solve's own work is (docs/performance.md).
   std::vector<double> round_seconds;
   auto on_round = [&](const IterationStats& it) {
     const std::string round = std::to_string(stats.iterations.size());
@@ -167,10 +167,8 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     }
     previous_rss = rss;
     const auto now = Clock::now();
-    const double seconds = std::chrono::duration<double>(now - round_start).count();
-    round_seconds.resize(stats.iterations.size(), -1.0);
-    if (!round_seconds.empty()) round_seconds.back() = seconds;
-    const double left = refinement_seconds_left(previous_new, it.new_links, seconds);
+    round_seconds.push_back(std::chrono::duration<double>(now - round_start).count());
+    const double left = refinement_seconds_left(previous_new, it.new_links, round_seconds.back());
     previous_new = it.new_links;
     round_start = now;
     if (!s.progress) return;
@@ -255,11 +253,11 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     if (!n.cluster && !n.child_count && !n.emission.x && !n.emission.y && !n.emission.z) lum.push_back(luminance(n.B) / kPi);
   r.surface_exposure = exposure_for(std::move(lum));
   json rounds = json::array();
+  const size_t read_back = stats.iterations.size() - round_seconds.size();
   for (size_t k = 0; k < stats.iterations.size(); ++k) {
     const IterationStats& it = stats.iterations[k];
-    const double seconds = k < round_seconds.size() ? round_seconds[k] : -1.0;
     rounds.push_back({{"links", it.links}, {"new_links", it.new_links}, {"sweeps", it.sweeps}, {"elements", it.elements}, {"rays", it.rays},
-                      {"seconds", seconds >= 0 ? json(seconds) : json(nullptr)},
+                      {"seconds", k < read_back ? json(nullptr) : json(round_seconds[k - read_back])},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
                       {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
