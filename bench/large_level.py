@@ -60,6 +60,7 @@ print("| rooms | mode | round | links made | rays | seconds | rays/s | of the ba
 print("| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
 for rooms, mode, rounds in by_round:
     for k, t in enumerate(rounds, 1):
+        timed = t["rays_per_s"] is not None  # a round read back from a checkpoint has no time
         seconds = f"{t['seconds']:.1f}" if t["seconds"] is not None else "-"
-        print(f"| {rooms} | {mode} | {k} | {t['new_links']:,} | {t['rays'] / 1e6:.1f} M | {seconds} | "
-              f"{t['rays_per_s'] / 1e6:.2f} M | {t['over_bare']:.2f} |")
+        rate = f"{t['rays_per_s'] / 1e6:.2f} M | {t['over_bare']:.2f}" if timed else "- | -"
+        print(f"| {rooms} | {mode} | {k} | {t['new_links']:,} | {t['rays'] / 1e6:.1f} M | {seconds} | {rate} |")
