@@ -60,7 +60,8 @@ print("| rooms | mode | round | links made | rays | seconds | rays/s | of the ba
 print("| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
 for rooms, mode, rounds in by_round:
     for k, t in enumerate(rounds, 1):
-        timed = t["rays_per_s"] is not None  # a round read back from a checkpoint has no time
+        # A round read back from a checkpoint has no time, so no rate: "-".
         seconds = f"{t['seconds']:.1f}" if t["seconds"] is not None else "-"
-        rate = f"{t['rays_per_s'] / 1e6:.2f} M | {t['over_bare']:.2f}" if timed else "- | -"
-        print(f"| {rooms} | {mode} | {k} | {t['new_links']:,} | {t['rays'] / 1e6:.1f} M | {seconds} | {rate} |")
+        per_s = f"{t['rays_per_s'] / 1e6:.2f} M" if t["rays_per_s"] is not None else "-"
+        over = f"{t['over_bare']:.2f}" if t["over_bare"] is not None else "-"
+        print(f"| {rooms} | {mode} | {k} | {t['new_links']:,} | {t['rays'] / 1e6:.1f} M | {seconds} | {per_s} | {over} |")

@@ -137,13 +137,13 @@ int main(int argc, char** argv) {
   const double batched = rate([&] { return batched_pass(rays, sample, batched_blocked); });
   const double solve = solve_seconds > 0 ? solve_rays / solve_seconds : 0.0;
   // Each round of the solve against the same bare loop: where its own work outweighs its rays. A round
-  // without a time (read back from a checkpoint) has no rate: null, not 0.
+  // without a time (read back from a checkpoint), or a loop without a rate, gives null, not 0.
   nlohmann::json rounds = nlohmann::json::array();
   for (const nlohmann::json& r : report["solver"]["rounds"]) {
     nlohmann::json per_s, over_bare;
     if (r["seconds"].is_number() && r["seconds"].get<double>() > 0) {
       per_s = r["rays"].get<double>() / r["seconds"].get<double>();
-      over_bare = bare > 0 ? per_s.get<double>() / bare : 0.0;
+      if (bare > 0) over_bare = per_s.get<double>() / bare;
     }
     rounds.push_back({{"new_links", r["new_links"]}, {"rays", r["rays"]}, {"sweeps", r["sweeps"]}, {"seconds", r["seconds"]},
                       {"rays_per_s", per_s}, {"over_bare", over_bare}});
