@@ -197,7 +197,7 @@ BakeSummary bake(const BakeSettings& s) {
                       {"min_polygons", volume_settings.min_polygons}, {"feature_ratio", volume_settings.feature_ratio},
                       {"penumbra_ratio", volume_settings.penumbra_ratio}};
   }
-  const MethodResult result = s.method == "classic"
+  MethodResult result = s.method == "classic"
                                   ? run_classic(s, scene, rays, tree, bounds, plan, phases)
                                   : run_hierarchical(s, scene, rays, tree, views, plan, twins,
                                                        plan.volumes.on ? &volume_visibility : nullptr, checkpoint, phases);
@@ -214,7 +214,7 @@ BakeSummary bake(const BakeSettings& s) {
 
   phases.start("mesh");
   json mesh_counts = json::object();
-  const SurfaceMesh surface = result.mesh(exposure, mesh_counts);
+  const SurfaceMesh surface = result.mesh(exposure, mesh_counts, result.solver);
 
   phases.start("chunks");
   ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);

@@ -62,11 +62,12 @@ class Phases {
 };
 
 // What a solver hands to the rest of the bake: a way to look up radiosity at a surface point (for
-// exposure), a mesher (given the exposure; it adds its own counters to the json), and its counters
-// for report.json.
+// exposure), a mesher (given the exposure; it adds its own counters to the first json, and may complete
+// the solver's, the second: the estimate counts what the output mesh leaves), and its counters for
+// report.json.
 struct MethodResult {
   std::function<Vec3(uint32_t, const Vec3&)> radiosity_at;
-  std::function<SurfaceMesh(double, json&)> mesh;
+  std::function<SurfaceMesh(double, json&, json&)> mesh;
   double surface_exposure = 1.0;  // exposure from the surfaces themselves, for bakes without viewpoints
   json counts, solver, energy, audit;
 };

@@ -109,7 +109,7 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
 
   MethodResult r;
   r.radiosity_at = [sub, b](uint32_t poly, const Vec3& p) { return (*b)[element_at(*sub, poly, p)]; };
-  r.mesh = [sub, b](double exposure, json&) { return mesh_elements(*sub, *b, exposure); };
+  r.mesh = [sub, b](double exposure, json&, json&) { return mesh_elements(*sub, *b, exposure); };
   std::vector<double> lum;
   for (size_t i = 0; i < n; ++i)
     if (!scene.materials[sub->elements[i].shape.material].emits()) lum.push_back(luminance((*b)[i]) / kPi);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "method_run.h"
@@ -10,6 +11,7 @@
 #include "walkrad/core/progress.h"
 #include "walkrad/core/ranks.h"
 #include "walkrad/formats/error.h"
+#include "walkrad/hierarchical/display_refinement.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy_audit.h"
@@ -210,8 +212,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   // the Cornell box 0.870% both, lamp-room 1.291% against 1.288%, for 1.41× the chunk bytes of a bake
   // without the gather instead of 1.63× and 1.73× (issue 23 allows 1.5×; docs/accuracy.md). Half as
   // many leaves as the solution: office-floor took 84 s of CPU, not 75.
-  GatherRefinement refinement;
+  DisplayRefinement refinement;
   refinement.seen = hs.gathered;
+  refinement.ungathered = !plan.importance.on;  // every surface is what the display shows
   refinement.twins = hs.twins;
   refinement.error = s.error;
   refinement.white = stats.white;
@@ -220,15 +223,22 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   refinement.budget = std::max<uint64_t>(h->element_count() / 8, 2048);
   const auto* lights = hs.lights;
   const RayScene* occluders = plan.visibility.on ? &rays : nullptr;
-  r.mesh = [h, point, seen, refinement, lights, occluders, &phases](double exposure, json& counts) {
-    if (point.gather) {
-      phases.start("gather");
+  // The estimate is made once the output mesh is refined (the leaves' interpolation error is in it).
+  auto view_hits = std::make_shared<std::vector<ViewHit>>(std::move(hits));
+  const size_t view_count = views.size();
+  r.mesh = [h, point, seen, refinement, lights, occluders, view_hits, view_count, &phases](double exposure, json& counts,
+                                                                                           json& solver) {
+    if (point.gather || refinement.ungathered) {
+      phases.start(point.gather ? "gather" : "display");
       uint64_t gather_rays = 0;
-      const uint64_t splits = refine_for_gather(*h, DirectGather(*h, lights, occluders), refinement, gather_rays);
-      counts["gather_splits"] = splits;
-      counts["gather_test_rays"] = gather_rays;
+      std::optional<DirectGather> gather;
+      if (point.gather) gather.emplace(*h, lights, occluders);
+      const uint64_t splits = refine_display(*h, gather ? &*gather : nullptr, refinement, gather_rays);
+      counts[point.gather ? "gather_splits" : "display_splits"] = splits;
+      if (point.gather) counts["gather_test_rays"] = gather_rays;
       phases.start("mesh");
     }
+    solver["estimated_error"] = error_estimate(*h, *view_hits, view_count);
     PointSolution drawn = point;
     PointSolution::Counts boundaries;
     drawn.counts = &boundaries;
@@ -262,15 +272,14 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
                       {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
   }
-  r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast},
+  r.counts = {{"elements", h->element_count()}, {"links", stats.links}, {"refinements", stats.refinements}, {"receiver_splits", stats.receiver_splits}, {"recast_links", stats.recast}, {"proven_hidden_links", stats.proven_hidden},
               {"probed_pairs", stats.probed_pairs}, {"probe_hidden_pairs", stats.probe_hidden}, {"probe_rays", stats.probe_rays},
               {"unoccluded_links", stats.unoccluded_links}, {"exact_links", stats.exact_links},
               {"volume_links", stats.volume_links}, {"grid_segments", stats.grid_segments},
               {"monte_carlo_links", stats.monte_carlo_links},
               {"visibility_rays", stats.rays}, {"importance_rays", view_rays}, {"iterations", stats.iterations.size()},
               {"light_rays", stats.light_rays}, {"light_refinements", stats.light_refinements}};
-  r.solver = {{"estimated_error", error_estimate(*h, hits, views.size())},
-              {"iteration", s.solver},
+  r.solver = {{"iteration", s.solver},
               {"oracle", stats.oracle}, {"error", s.error}, {"white", stats.white}, {"min_area", stats.min_area},
               {"above_tolerance", stats.above_tolerance},
               {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},

@@ -36,6 +36,8 @@ class DefaultBake {
   ~DefaultBake() {
     if (!std::getenv("WALKRAD_KEEP_TEST_BAKE")) std::filesystem::remove_all(dir_);
   }
+  // The folder: scene.gltf (a scene made in code) and the bake, scene.bake.
+  const std::filesystem::path& folder() const { return dir_; }
 
  private:
   std::filesystem::path dir_;  // first: the members below are made in declaration order, the bake into it

@@ -197,7 +197,10 @@ void Solver::shoot_importance_exactly() {
   std::vector<int64_t> sum(nodes.size(), 0);
   for (uint32_t i = 0; i < nodes.size(); ++i)  // sequential: no two threads add to one source
     if (counts_links(h_, i))
-      for (const Link& l : nodes[i].links) sum[l.source] += std::llround(luminance(nodes[i].rho) * l.F * nodes[i].I * unit);
+      for (const Link& l : nodes[i].links)
+        for_each_part(h_, l, [&](uint32_t part, double w) {
+          sum[part] += std::llround(luminance(nodes[i].rho) * l.F * nodes[i].I * w * unit);
+        });
   if (divided_) all_sum(sum.data(), sum.size());
   const double back = 1.0 / unit;  // a power of 2: exact
   for (size_t k = 0; k < nodes.size(); ++k) nodes[k].Ig = double(sum[k]) * back;

@@ -66,9 +66,18 @@ void Solver::update_scales() {
 
 double Solver::display_weight(uint32_t i) const {
   if (!importance_) return 1.0;
-  // A node made this round takes its parent's weight until the next update.
-  while (i >= weight_.size() && h_[i].parent >= 0) i = uint32_t(h_[i].parent);
-  return i < weight_.size() ? double(weight_[i]) : 1.0;
+  if (i < weight_.size()) return double(weight_[i]);
+  // A node made this round: its own direct importance (its view hits follow it: Hierarchy::subdivide)
+  // and its share by area of the indirect importance of the ancestor the last update weighed (push-pull
+  // spreads it so), as update_scales weighs a leaf. Its parent's weight, the largest of its leaves',
+  // let one seen metre of a corridor's 320 m floor refine all of it within one round.
+  uint32_t a = i;
+  while (a >= weight_.size() && h_[a].parent >= 0) a = uint32_t(h_[a].parent);
+  if (a >= weight_.size() || seen_density_ <= 0 || h_[i].area <= 0 || h_[a].area <= 0) return 1.0;
+  const HNode& n = h_[i];
+  const HNode& ancestor = h_[a];
+  const double indirect = direct_weights_ ? 0.0 : std::max(0.0, ancestor.I - ancestor.R) * n.area / ancestor.area;
+  return std::min(1.0, (n.R + indirect) / (n.area * seen_density_));
 }
 
 double Solver::tolerance(uint32_t i) const {
@@ -238,9 +247,20 @@ bool Solver::worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* 
                                                                         ? double(spread_[size_t(sj.parent)]) : 0.0;
   if (!occluded && !clearly_greater(spread, s_.error * sent_b)) return false;  // a uniform source in full view: exact
   // What the link may carry: the estimate from the centres, or its own form factor once evaluated; a
-  // link whose every ray was blocked, only what n rays could have missed (through a wall: little).
-  const double F = !link ? transfer_estimate(ri, sj) : link->F > 0 ? std::max(transfer_estimate(ri, sj), double(link->F)) : link->sigma;
-  const double carried = luminance(ri.rho) * sent_b * F * ri.area * display_weight(i);
+  // link whose every ray was blocked, what its n rays could have missed: the fraction below which n
+  // blocked rays put what passes with 95% confidence, 3/n of its unoccluded form factor (3σ: the "rule
+  // of three"). Not the centres' estimate: a corridor's 160 m ceiling is 80 m from a room's floor by
+  // their centres, and a few centimetres from the doorway's threshold.
+  const double F = !link ? transfer_estimate(ri, sj)
+                   : link->F > 0 ? std::max(transfer_estimate(ri, sj), double(link->F))
+                   : kHiddenBound * double(link->sigma);
+  // What the link sends: its source's mean, or where the source's leaves range wider than that mean
+  // and the receiver is near enough to see its parts unevenly (the source's radius against the
+  // distance between them), the range: taking the mean errs by up to it there (a corridor's 160 m
+  // wall, dark but for the patch its doorway lights, sends a mean 140 times below that patch to the
+  // floor beside the door). A far or small source is seen alike in all its parts: its mean is right.
+  const double near = std::min(1.0, sj.radius / std::max(length(sj.center - ri.center), 1e-300));
+  const double carried = luminance(ri.rho) * std::max(sent_b, near * spread) * F * ri.area * display_weight(i);
   return clearly_greater(carried, s_.error * white_ * quantum_area_);
 }
 

@@ -28,12 +28,6 @@ namespace {
 constexpr int kFirst = 4, kFinest = DirectGather::kVertexPenumbra;
 constexpr double kCornerInset = 0.01;  // of the way to the emitter's centre
 
-// The interpolation error allowed at a gathered leaf, as a share of the solution's tolerance (e × what
-// it shows): a quarter, since a shadow's edge is what the eye finds first. On the Cornell box (default
-// error, every source by the contour formula, a budget of half the leaves) 1, 0.5, 0.25 and 0.1 gave
-// 0.96, 0.96, 0.92 and 0.91% weighted RMS.
-constexpr double kInterpolationShare = 0.25;
-
 uint64_t point_seed(const Vec3& x) {
   uint64_t bits[3];
   std::memcpy(&bits[0], &x.x, 8);
@@ -43,6 +37,15 @@ uint64_t point_seed(const Vec3& x) {
 }
 
 }  // namespace
+
+bool in_view(const Hierarchy& h, uint32_t leaf, double reach) {
+  if (h.hits().empty()) return true;
+  int32_t a = int32_t(leaf);
+  while (!h[uint32_t(a)].cluster && h[uint32_t(a)].depth > 0 && h[uint32_t(a)].area < reach) a = h[uint32_t(a)].parent;
+  return h[uint32_t(a)].hit_end > h[uint32_t(a)].hit_begin;
+}
+
+double view_reach(const Hierarchy& h) { return default_min_area(h) * 128.0 * 128.0; }
 
 void merge_ranges(EmitterRanges& a, const EmitterRanges& b) {
   if (b.empty()) return;
@@ -79,7 +82,7 @@ DirectGather::DirectGather(const Hierarchy& h, const std::vector<PunctualLight>*
     if (!n.cluster) continue;
     if (n.parent >= 0) cluster_ranges_[i] = cluster_ranges_[size_t(n.parent)];
     for (const Link& l : n.links)
-      if (l.F > 0) merge_ranges(cluster_ranges_[i], ranges_of(h[l.source]));
+      if (l.F > 0 || l.sigma > 0) merge_ranges(cluster_ranges_[i], ranges_of(h[l.source]));
   }
 }
 
@@ -101,7 +104,7 @@ EmitterRanges DirectGather::candidates(uint32_t leaf) const {
   int32_t a = int32_t(leaf);
   for (; a >= 0 && !h_[uint32_t(a)].cluster; a = h_[uint32_t(a)].parent)
     for (const Link& l : h_[uint32_t(a)].links)
-      if (l.F > 0) merge_ranges(out, ranges_of(h_[l.source]));
+      if (l.F > 0 || l.sigma > 0) merge_ranges(out, ranges_of(h_[l.source]));
   if (a >= 0) merge_ranges(out, cluster_ranges_[size_t(a)]);
   return out;
 }
@@ -167,124 +170,6 @@ Vec3 DirectGather::at(const Vec3& x, const Vec3& n, const Vec3& inward, const Em
   // 1 cm out: 39% dark).
   if (lights_) D += point_irradiance(x, n, *lights_, rays_, rays_cast, &origin);
   return D;
-}
-
-namespace {
-
-// How far leaf's ρD departs from its Gouraud interpolation (luminance): the largest difference at an
-// edge's quarter, half and three-quarter points and at the centre (a quad's centre lies on the
-// diagonal v0–v2 its two triangles share). The quarters catch a penumbra that a leaf straddles
-// symmetrically: at its midpoint the light is half on, as the corners' mean says.
-double interpolation_error(const Hierarchy& h, const DirectGather& g, uint32_t leaf, const Vec3& tau, uint64_t& rays) {
-  const HNode& n = h[leaf];
-  const EmitterRanges from = g.candidates(leaf);
-  const Vec3 c = polygon_centroid(n.shape);
-  auto shade = [&](const Vec3& x) {
-    Vec3 inward = c - x;
-    const double len = length(inward);
-    inward = len > 0 ? inward / len : Vec3{};
-    Vec3 shown = mul(n.rho, g.at(x, n.normal, inward, from, rays, DirectGather::kTestPenumbra));
-    // A transmitting leaf shows τ times its back's light too: the punctual lights' (the mesher's
-    // LeafRadiosity takes their variation at the point; lamp-room's bulb inside its shade).
-    if (max_component(tau) > 0) shown += mul(tau, g.at(x, n.normal * -1.0, inward, {}, rays, DirectGather::kTestPenumbra));
-    return luminance(shown);
-  };
-  std::array<double, 4> corner{};
-  for (int k = 0; k < n.shape.count; ++k) corner[size_t(k)] = shade(n.shape.v[size_t(k)]);
-  double worst = 0;
-  for (int k = 0; k < n.shape.count; ++k) {
-    const int m = (k + 1) % n.shape.count;
-    for (const double t : {0.25, 0.5, 0.75}) {
-      const double along = shade(n.shape.v[size_t(k)] * (1 - t) + n.shape.v[size_t(m)] * t);
-      worst = std::max(worst, std::fabs(along - ((1 - t) * corner[size_t(k)] + t * corner[size_t(m)])));
-    }
-  }
-  const double interpolated = n.shape.count == 4 ? 0.5 * (corner[0] + corner[2]) : (corner[0] + corner[1] + corner[2]) / 3.0;
-  return std::max(worst, std::fabs(shade(c) - interpolated));
-}
-
-}  // namespace
-
-uint64_t refine_for_gather(Hierarchy& h, const DirectGather& g, const GatherRefinement& r, uint64_t& rays_cast) {
-  if ((g.emitter_count() == 0 && !g.has_lights()) || r.white <= 0) return 0;
-  auto twin_of = [&](const HNode& n) { return r.twins ? (*r.twins)[n.polygon] : kNoTwin; };
-  auto tau_of = [&](const HNode& n) {
-    return twin_of(n) == kNoTwin ? Vec3{} : material_transmittance(h, n);
-  };
-  std::vector<uint32_t> batch;
-  for (uint32_t i = 0; i < h.nodes().size(); ++i) {
-    const HNode& n = h[i];
-    if (!is_leaf_element(n) || max_component(n.emission) > 0) continue;
-    if (r.seen && !(*r.seen)[n.polygon]) continue;
-    if (twin_of(n) != kNoTwin && !g.has_lights()) continue;  // its back's light is the links' alone
-    batch.push_back(i);
-  }
-  // The leaves over their tolerance wait in one queue, the worst first whatever its depth: level by
-  // level, a budget spent on the first level's many slight excesses left a 5 cm penumbra, whose
-  // excess is larger, unsplit below it. Splits are taken kBatch at a time, their children tested in
-  // parallel; ties go to the lower node index, so the result depends on no thread count.
-  constexpr size_t kBatch = 256;
-  using Entry = std::pair<double, uint32_t>;  // excess, node
-  auto worse = [](const Entry& a, const Entry& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
-  std::vector<Entry> queue;  // a heap under `worse`
-  uint64_t splits = 0;
-  std::atomic<uint64_t> rays{0};
-  while (!batch.empty()) {
-    // Each leaf tested on the rank holding its links (the candidates are its ancestors'), and its
-    // excess given to every rank (link_owners.h): the queue and the splits are the same on all.
-    std::vector<double> excess(batch.size(), 0.0);
-    auto rank_of = [&](size_t k) { return polygon_rank(h, h[batch[k]].polygon); };
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.size(), 16), [&](const tbb::blocked_range<size_t>& range) {
-      uint64_t cast = 0;
-      for (size_t k = range.begin(); k != range.end(); ++k) {
-        if (!h.owners().holds_polygon(h[batch[k]].polygon)) continue;
-        const HNode& n = h[batch[k]];
-        if (n.depth >= r.max_depth || n.area * 0.25 < r.min_area) continue;
-        const double shown = std::clamp(luminance(n.B), 0.1 * r.white, r.white);
-        excess[k] = interpolation_error(h, g, batch[k], tau_of(n), cast) / (kInterpolationShare * r.error * shown);
-      }
-      rays += cast;
-    });
-    if (h.owners().divided()) share_owned(excess, rank_of);
-    for (size_t k = 0; k < batch.size(); ++k)
-      if (excess[k] > 1) {
-        queue.push_back({excess[k], batch[k]});
-        std::push_heap(queue.begin(), queue.end(), worse);
-      }
-    batch.clear();
-    while (!queue.empty() && batch.size() < 4 * kBatch && splits * 4 < r.budget) {
-      std::pop_heap(queue.begin(), queue.end(), worse);
-      const uint32_t i = queue.back().second;
-      queue.pop_back();
-      h.subdivide(i);
-      ++splits;
-      const uint32_t twin = twin_of(h[i]);
-      const Vec3 tau = tau_of(h[i]), twin_D = twin == kNoTwin ? Vec3{} : twin_direct(h, h[i], twin);
-      for (uint32_t c = 0; c < 4; ++c) {
-        const uint32_t child = h.child(h[i], c);
-        HNode& kid = h[child];
-        const HNode& parent = h[i];
-        kid.receive = parent.receive;
-        kid.send = parent.send;
-        kid.balanced = parent.balanced;
-        kid.D = parent.D;
-        kid.D_known = parent.D_known;
-        kid.Hl = parent.Hl;
-        // A transmitting kid passes on its twin's light at its own place (twin_direct, as the mesher
-        // takes it there): B as the solve would have made it from the twin's D.
-        if (twin != kNoTwin) {
-          const Vec3 change = mul(tau, twin_direct(h, kid, twin) - twin_D);
-          kid.B += change;
-          kid.Bt += change * kid.send;
-        }
-        batch.push_back(child);
-      }
-    }
-  }
-  int64_t all_rays = int64_t(rays.load());
-  if (h.owners().divided()) all_sum(&all_rays, 1);
-  rays_cast += uint64_t(all_rays);
-  return splits;
 }
 
 }  // namespace walkrad

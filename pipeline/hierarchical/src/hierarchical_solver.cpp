@@ -13,7 +13,7 @@ namespace walkrad {
 namespace hierarchical_detail {
 
 Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
-      : h_(h), rays_(rays), s_(s), stats_(stats) {
+      : h_(h), rays_(rays), proof_(h.scene(), h.tree()), s_(s), stats_(stats) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
   divisible_ = !indivisible_because(s_);
@@ -229,12 +229,17 @@ const char* undivided_because(const HierarchicalSettings& s) {
 double default_min_area(const Hierarchy& h) {
   // A 128th of the median input polygon's side, the median taken by area (the size of the surfaces
   // most of the scene is made of): the same for a room whatever the building around it, and it scales
-  // with the scene's units.
+  // with the scene's units. A polygon counts as its squarest part no more elongated than 4 to 1 (4 ×
+  // its short side squared), as it splits (split_element): a corridor's floor one quad along the
+  // whole level would make the median, and every tolerance, grow with the corridor's length.
   std::vector<std::pair<double, double>> sizes;
   double total = 0;
   for (const HNode& n : h.nodes())
     if (!n.cluster && n.depth == 0 && n.area > 0) {
-      sizes.push_back({n.area, n.area});
+      double longest = 0;
+      for (int k = 0; k < n.shape.count; ++k) longest = std::max(longest, length(n.shape.v[size_t((k + 1) % n.shape.count)] - n.shape.v[size_t(k)]));
+      const double shortest = longest > 0 ? n.area / longest : 0.0;
+      sizes.push_back({std::min(n.area, 4 * shortest * shortest), n.area});
       total += n.area;
     }
   if (sizes.empty()) return 0;

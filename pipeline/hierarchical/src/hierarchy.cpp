@@ -106,7 +106,30 @@ uint32_t quadrant_of(const std::array<Polygon, 4>& quadrants, const Vec3& normal
   return 3;
 }
 
+namespace {
+
+// How a quad splits: where one pair of opposite sides is kStripAspect times as long as the other (by
+// their means), into 4 strips across the long sides, else in quarters by the bilinear midpoints.
+// Quarters keep the parent's aspect: a corridor's 320 × 2 m floor made 1.25 m × 8 mm slivers at depth 8,
+// each near every vertex along it (the mesher's near sources); in strips it goes 80 × 2, 20 × 2, 5 × 2,
+// then in quarters, and no element is more elongated than 4 to 1 but its input polygon.
+constexpr double kStripAspect = 4.0;
+enum class Split { kQuarters, kAlongU, kAlongV };  // strips along u (sample_polygon's v0 → v1) or v (v0 → v3)
+
+Split split_of(const Polygon& s) {
+  if (s.count != 4) return Split::kQuarters;
+  const double lu = length(s.v[1] - s.v[0]) + length(s.v[2] - s.v[3]), lv = length(s.v[3] - s.v[0]) + length(s.v[2] - s.v[1]);
+  if (lu >= kStripAspect * lv) return Split::kAlongU;
+  if (lv >= kStripAspect * lu) return Split::kAlongV;
+  return Split::kQuarters;
+}
+
+}  // namespace
+
 uint32_t sample_quadrant(const Polygon& shape, double u, double v) {
+  const Split split = split_of(shape);
+  if (split == Split::kAlongU) return std::min(3u, uint32_t(4 * u));
+  if (split == Split::kAlongV) return std::min(3u, uint32_t(4 * v));
   if (shape.count == 4) return u < 0.5 ? (v < 0.5 ? 0 : 3) : (v < 0.5 ? 1 : 2);
   const double su = std::sqrt(u);  // sample_polygon's barycentric weights: 1 − su, su (1 − v), su v
   if (su < 0.5) return 0;
@@ -122,6 +145,18 @@ std::array<Polygon, 4> split_element(const Polygon& s) {
     std::copy(v.begin(), v.end(), p.v.begin());
     return p;
   };
+  const Split split = split_of(s);
+  if (split != Split::kQuarters) {
+    // Strips between the bilinear points at u (or v) = k/4 on the two long sides, in the parent's winding.
+    auto at = [&](double u, double v) { return s.v[0] * ((1 - u) * (1 - v)) + s.v[1] * (u * (1 - v)) + s.v[2] * (u * v) + s.v[3] * ((1 - u) * v); };
+    std::array<Polygon, 4> out;
+    for (int k = 0; k < 4; ++k) {
+      const double a = 0.25 * k, b = 0.25 * (k + 1);
+      out[size_t(k)] = split == Split::kAlongU ? piece({at(a, 0), at(b, 0), at(b, 1), at(a, 1)})
+                                               : piece({at(0, a), at(1, a), at(1, b), at(0, b)});
+    }
+    return out;
+  }
   if (s.count == 4) {
     const Vec3 m01 = (s.v[0] + s.v[1]) * 0.5, m12 = (s.v[1] + s.v[2]) * 0.5, m23 = (s.v[2] + s.v[3]) * 0.5,
                m30 = (s.v[3] + s.v[0]) * 0.5, c = (m01 + m23) * 0.5;

@@ -63,6 +63,7 @@ Solver::LinkCounts Solver::count_links(const PendingList& list) const {
     if (p.volume) c[kGridSegments] += p.grid_segments;
     c[kMonteCarlo] += h_[p.receiver].cluster || h_[p.source].cluster;
     c[kKept] += kept(p);
+    c[kProven] += p.proven;
   }
   return c;
 }
@@ -75,6 +76,7 @@ void Solver::add_counts(const LinkCounts& c, IterationStats& is) {
   stats_.unoccluded_links += uint64_t(c[kUnoccluded]);
   stats_.monte_carlo_links += uint64_t(c[kMonteCarlo]);
   stats_.links += uint64_t(c[kKept]);
+  stats_.proven_hidden += uint64_t(c[kProven]);
 }
 
 void Solver::store_links(PendingList& list) {
@@ -219,7 +221,15 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   const HNode& sj = h_[p.source];
   const double offset = rays_.offset();
   const std::array<Polygon, 4> kids = split_element(ri.shape);
-  const int order = std::max(1, quadrature_order(length(ri.center - sj.center), std::sqrt(ri.area), std::sqrt(sj.area)) / 2);
+  // Each end's size: the side of its area, or half its longest side where that is longer (an element
+  // more elongated than 4 to 1: a corridor's floor, 160 × 2 m, is 80 m long to a lamp at its one end,
+  // not 18; one point a quadrant put its first 20 m from the doorway).
+  auto size = [](const HNode& n) {
+    double longest = 0;
+    for (int k = 0; k < n.shape.count; ++k) longest = std::max(longest, length(n.shape.v[size_t((k + 1) % n.shape.count)] - n.shape.v[size_t(k)]));
+    return std::max(std::sqrt(n.area), 0.5 * longest);
+  };
+  const int order = std::max(1, quadrature_order(length(ri.center - sj.center), size(ri), size(sj)) / 2);
   const int per_child = p.need_rays || p.volume ? std::max(1, p.samples / 4) : 0;
   std::vector<double>& kernel = kernel_scratch_;
   kernel.clear();
@@ -293,10 +303,12 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   for (int c = 0; c < 4; ++c) open += unoccluded[c];
   p.open = float(open / ri.area);
   if (!segments.empty() && hidden == segments.size()) {
-    // Every ray blocked: 0, but the part n rays could have missed stays uncertain (a visible fraction
-    // of about 1/n), so that the refinement can still find the part that sees.
+    // Every ray blocked: 0, and nothing at all where the occlusion is proven; else the part n rays
+    // could have missed stays uncertain (a visible fraction of about 1/n), so that the refinement can
+    // still find the part that sees.
     p.F = 0;
-    p.sigma = p.open / float(segments.size());
+    p.proven = proven_hidden(p, segments);
+    p.sigma = p.proven ? 0.0f : p.open / float(segments.size());
   }
   p.share = shares(Fc, sigma_c, 4, p.F);
   p.inner = p.F > 0 ? uint8_t(std::min(255.0, std::round(64.0 * inner / p.F))) : 0;
@@ -395,11 +407,12 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   // Not capped above (a cap at min(1, A_j/A_i) would bias the estimate low); rows that sum to too
   // much are caught at the leaves (push_pull). Every ray blocked: 0 (as for elements above).
   p.F = all_blocked ? 0.0 : std::max(0.0, mostly_hidden ? open / N : unoccluded - occluded);
+  p.proven = all_blocked && proven_hidden(p, segments);
   // Standard error: of the mean of K·v, or of the hidden part's mean K·(1 − v) beside an exact F;
   // every ray blocked: a visible fraction of about 1/n of the unoccluded form factor.
   const double m = plain ? open / N : occluded, m2 = plain ? open2 / N : shut2 / N;
   p.open = float(unoccluded);
-  p.sigma = all_blocked ? unoccluded / double(segments.size())
+  p.sigma = p.proven ? 0.0 : all_blocked ? unoccluded / double(segments.size())
                         : N > 1 ? std::sqrt(std::max(0.0, m2 - m * m) / (N - 1)) : 0.0;
   p.share = ri.cluster ? cluster_shares(ri, sj) : child_shares(4, drawn_samples, visible, open / N);
   // Link::seen, where rays were cast: the visible kernel of the samples by the source's part.

@@ -142,15 +142,15 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   const std::vector<Link>& links = h_[i].links;
   if (links.empty()) return plan;
   // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
-  // than its tolerance: every link goes down to the children but the wholly hidden, which stay, settled
-  // (settled_hidden) or to be cast again where what they might carry matters, as below.
+  // than its tolerance: every link goes down to the children but the wholly hidden, which stay where
+  // what they might carry does not matter, and are first cast again where it does, as below.
   if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
     plan.split_receiver = true;
     plan.action.assign(links.size(), kSplit);
     for (size_t k = 0; k < links.size(); ++k) {
       const Link& l = links[k];
-      if (recastable(l)) plan.action[k] = worth_splitting(i, l.source, true, nullptr) ? kRecast : kKeep;
-      else if (settled_hidden(l)) plan.action[k] = kKeep;
+      if (recastable(l)) plan.action[k] = worth_splitting(i, l.source, true, &l) ? kRecast : kKeep;
+      else if (unresolved(l) && !worth_splitting(i, l.source, true, &l)) plan.action[k] = kKeep;
     }
     if (!with_candidates) return plan;
     plan.candidates.resize(links.size());
@@ -159,14 +159,14 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
     return plan;
   }
   // Each link: one that carries more than its share is refined again from here (refine splits it).
-  // A link whose every ray was blocked is first cast again with kHiddenRecast times the rays: a few
-  // rays miss a gap, and a wall between two rooms should not be refined for what they might miss.
+  // A link whose every ray was blocked is first cast again with kHiddenRecast times the rays (a few
+  // rays miss a gap); still unresolved, it is refined while what it might carry matters.
   plan.action.assign(links.size(), kKeep);
   for (size_t k = 0; k < links.size(); ++k) {
     const Link& l = links[k];
-    if (recastable(l) && worth_splitting(i, l.source, true, nullptr)) {
+    if (recastable(l) && worth_splitting(i, l.source, true, &l)) {
       plan.action[k] = kRecast;
-    } else if (!settled_hidden(l) && (splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
+    } else if (!recastable(l) && (splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
       plan.action[k] = kSplit;
       if (!with_candidates) continue;
       if (plan.candidates.empty()) plan.candidates.resize(links.size());  // most receivers split none

@@ -48,6 +48,11 @@ constexpr double kFinerReceiver = 0.5;
 
 }  // namespace
 
+bool taken_at_points(const Hierarchy& h, const HNode& r, const Link& l) {
+  const HNode& s = h[l.source];
+  return !s.cluster && l.open > 0 && length(s.center - r.center) < kNear * (r.radius + s.radius);
+}
+
 ClusterGather::ClusterGather(const Hierarchy& h, bool indirect, const std::vector<PunctualLight>* lights, const RayScene* rays)
     : h_(h), indirect_(indirect), lights_(lights && !lights->empty() ? lights : nullptr), rays_(rays),
       H_(h.scene().polygons.size()), Hg_(h.scene().polygons.size()), row_(h.scene().polygons.size(), 0.0),
@@ -244,7 +249,7 @@ LeafRadiosity::LeafRadiosity(const ClusterGather& clusters, uint32_t leaf, uint3
       // source is taken at the point: the gather is what the walkthrough sees, and a quadrant's share
       // placed at a vertex is a staircase that Gouraud shading smooths into the wrong ramp.
       const bool point_form = !s.cluster && l.open > 0;
-      const bool close = point_form && length(s.center - r.center) < kNear * (r.radius + s.radius);
+      const bool close = taken_at_points(h, r, l);
       if (point_form) near_.push_back({l.source, l.F / double(l.open), close, sent, reflected, reading.target});
       // As the solve pushes it: by the part's share (the leaf's own links by the quadrant the point
       // falls in).

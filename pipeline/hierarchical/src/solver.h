@@ -19,6 +19,7 @@
 #include "walkrad/hierarchical/transmission.h"
 #include "walkrad/core/huge_pages.h"
 #include "walkrad/core/sampling.h"
+#include "walkrad/visibility/occlusion_proof.h"
 #include "walkrad/visibility/shaft.h"
 
 namespace walkrad::hierarchical_detail {
@@ -42,6 +43,7 @@ struct Pending {
   bool need_rays;   // Embree rays (against the solid scene when volume)
   bool volume = false;  // volume clusters in the shaft stand in for their polygons (volume_visibility.h)
   uint8_t inner = 0;    // Link::inner
+  bool proven = false;  // every ray blocked, and occlusion_proof.h proves every other would be: dropped
   double F = 0;
   float sigma = 0, open = 0;
   std::array<float, 4> share = {1, 1, 1, 1};
@@ -168,19 +170,21 @@ class Solver {
   // from that child's mean (measure_variation; Link::inner bounds it).
   double emitted_inner(uint32_t i) const;
 
-  // How many times the rays a wholly hidden link is cast again with before it counts as hidden.
+  // How many times the rays a wholly hidden link is cast again with before it counts as unresolved.
   static constexpr int kHiddenRecast = 8;
-  // A link whose every ray was blocked: 0, with what its rays could have missed as σ (evaluate).
+  // A link whose every ray was blocked but whose occlusion is not proven (a link proven hidden is
+  // dropped: evaluate): 0, with what its rays could have missed as σ. A few rays miss a doorway seen
+  // from the far end of a long corridor floor, so its light may still pass.
   static bool hidden(const Link& l) { return l.F == 0 && l.sigma > 0; }
   // Hidden, not yet cast again with kHiddenRecast times the rays.
   bool recastable(const Link& l) const { return hidden(l) && l.samples > 0 && int(l.samples) < kHiddenRecast * s_.rays; }
-  // Cast again and every ray still blocked: settled at 0, its σ a noise the estimate keeps. It is neither
-  // split nor sent down when its receiver splits: a child's link casts no more rays per unit of area than
-  // the recast did, and through a wall each level of a split cast 4 times the rays to find nothing
-  // (office-floor 16 rooms: 3.2 M links between its two wings, every one blocked, 123 M of its 882 M rays).
-  bool settled_hidden(const Link& l) const {
-    return hidden(l) && (l.rays & 2) == 0 && int(l.samples) >= kHiddenRecast * s_.rays;
-  }
+  // Cast again and every ray still blocked, yet not proven: what passes is below 3/n of its unoccluded
+  // form factor with 95% confidence (kHiddenBound σ), so it is refined (receiver or source) while that
+  // much would matter (worth_splitting), and kept at 0 with its σ in the estimate once it would not.
+  // Its children's links are proven hidden, see the part of the source that passes, or are left
+  // smaller and unresolved.
+  bool unresolved(const Link& l) const { return hidden(l) && !recastable(l); }
+  static constexpr double kHiddenBound = 3.0;
   // A link's rays double past this many candidate blockers in its shaft, and double again past kMany.
   static constexpr size_t kSomeBlockers = 4, kManyBlockers = 64;
   // Refinement stops after a round that adds fewer than 1 / kLastRoundShare of the links.
@@ -361,7 +365,7 @@ class Solver {
   static bool kept(const Pending& p) { return p.F > 0 || p.sigma > 0; }
   // What a list of evaluated links adds to the statistics, as integers (a divided solve sums each
   // rank's: any order), and the statistics so added.
-  enum LinkCount { kRays, kVolume, kGridSegments, kExact, kUnoccluded, kMonteCarlo, kKept, kLinkCounts };
+  enum LinkCount { kRays, kVolume, kGridSegments, kExact, kUnoccluded, kMonteCarlo, kKept, kProven, kLinkCounts };
   using LinkCounts = std::array<int64_t, kLinkCounts>;
   LinkCounts count_links(const PendingList& list) const;
   void add_counts(const LinkCounts& counts, IterationStats& is);
@@ -400,6 +404,12 @@ class Solver {
   static double point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny);
 
   uint64_t polygon_pairs(const HNode& a, const HNode& b) const;
+
+  // Whether a link whose every segment was blocked is proven hidden (occlusion_proof.h), by the planes
+  // of the first surfaces a few of its segments meet. Not through volumes (their light is attenuated,
+  // never stopped).
+  bool proven_hidden(const Pending& p, const std::vector<RayScene::Segment>& segments) const;
+  static constexpr int kProofHints = 4;  // segments whose first hit names a plane to try
 
   // (1/A_i) Σ_{k ∈ i} Σ_{m ∈ j} A_k F_km over the polygons (or the element) of each end.
   double exact_unoccluded(const HNode& ri, const HNode& sj) const;
@@ -446,6 +456,7 @@ class Solver {
 
   Hierarchy& h_;
   const RayScene& rays_;
+  const OcclusionProof proof_;
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
   double min_area_ = 0, change_ = 0, change_floor_ = 0;

@@ -462,7 +462,11 @@ TEST(LinkSeen, SampleQuadrantMatchesThePoint) {
   quad.count = 4;
   Polygon tri = quad;
   tri.count = 3;
-  for (const Polygon& p : {quad, tri}) {
+  // Elongated quads split in strips across their long sides, along u and along v.
+  Polygon long_u = quad, long_v = quad;
+  long_u.v = {Vec3(0, 0, 0), Vec3(9, 0.3, 0), Vec3(9.5, 1.8, 0), Vec3(-0.2, 1.1, 0)};
+  long_v.v = {Vec3(0, 0, 0), Vec3(1.2, 0.3, 0), Vec3(1.5, 9.8, 0), Vec3(-0.2, 9.1, 0)};
+  for (const Polygon& p : {quad, tri, long_u, long_v}) {
     const std::array<Polygon, 4> kids = split_element(p);
     const Vec3 n = polygon_normal(p);
     int counts[4] = {0, 0, 0, 0};
@@ -474,7 +478,16 @@ TEST(LinkSeen, SampleQuadrantMatchesThePoint) {
         ++counts[q];
       }
     for (int c = 0; c < 4; ++c) EXPECT_GT(counts[c], 0);
+    // The children tile the parent, and the strips are no longer than 4 to 1 beside the parent's 8.
+    double area = 0;
+    for (const Polygon& k : kids) area += polygon_area(k);
+    EXPECT_NEAR(area, polygon_area(p), 1e-12 * polygon_area(p));
   }
+  for (const Polygon& p : {long_u, long_v})
+    for (const Polygon& k : split_element(p)) {
+      const double a = length(k.v[1] - k.v[0]) + length(k.v[2] - k.v[3]), b = length(k.v[3] - k.v[0]) + length(k.v[2] - k.v[1]);
+      EXPECT_LT(std::max(a, b) / std::min(a, b), 4.0);
+    }
 }
 
 }  // namespace

@@ -49,9 +49,10 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
   std::vector<EmitterRanges> candidates;
   if (point.gather) {
     direct = std::make_unique<DirectGather>(h, point.lights, point.rays);
+    const double reach = view_reach(h);
     auto seen = [&](size_t face) {
       const uint32_t p = faces[face].polygon;
-      return (!point.seen || (*point.seen)[p]) && !transmitting(p);
+      return (!point.seen || (*point.seen)[p]) && !transmitting(p) && in_view(h, leaf[face], reach);
     };
     candidates.resize(faces.size());
     std::vector<uint8_t> seen_face(faces.size());

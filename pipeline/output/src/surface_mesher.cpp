@@ -1,5 +1,6 @@
 #include "walkrad/output/surface_mesher.h"
 #include "walkrad/output/corner_weld.h"
+#include "walkrad/output/vertex_sides.h"
 #include "walkrad/core/huge_pages.h"
 #include "walkrad/core/ranks.h"
 
@@ -169,24 +170,31 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
   // mesh phase 1.20 -> 0.79 s, 1.031 -> 1.033% weighted RMS; lamp-room 1.253 -> 1.252%; test
   // ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
   // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
+  // A group's faces on either side of a wall standing on them take a vertex each (vertex_sides.h).
   GrowingHugeVector<uint32_t> slot_point, slot_group, slot_next;  // grown: pages as they are used
+  GrowingHugeVector<uint8_t> slot_side;
   HugeVector<uint32_t> face_slots(boundary.size());
   HugeVector<uint32_t> first_slot(points.size(), UINT32_MAX);
+  {
+  const std::vector<uint8_t> side = vertex_sides(faces, points, boundary.data(), boundary_begin.data(), group, weld_tol);
   for (size_t i = 0; i < faces.size(); ++i) {
     const uint32_t g = group[faces[i].polygon];
     for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
       uint32_t s = first_slot[boundary[j]];
-      while (s != UINT32_MAX && slot_group[s] != g) s = slot_next[s];
+      while (s != UINT32_MAX && (slot_group[s] != g || slot_side[s] != side[j])) s = slot_next[s];
       if (s == UINT32_MAX) {
         s = uint32_t(slot_point.size());
         slot_point.push_back(boundary[j]);
         slot_group.push_back(g);
+        slot_side.push_back(side[j]);
         slot_next.push_back(first_slot[boundary[j]]);
         first_slot[boundary[j]] = s;
       }
       face_slots[j] = s;
     }
   }
+  }
+  GrowingHugeVector<uint8_t>().swap(slot_side);
   const size_t slots = slot_point.size();
   const bool gathering = at && gather.seen && gather.direct;
   HugeVector<uint8_t> face_seen(gathering ? faces.size() : 0), gathered(slots, 0);

@@ -20,10 +20,20 @@
 #include <vector>
 
 #include "walkrad/hierarchical/error_presets.h"
+#include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy.h"
 #include "walkrad/visibility/ray_scene.h"
 
 namespace walkrad {
+
+// Whether a leaf of a seen polygon lies where the walkthrough looks, so that its vertices are gathered:
+// it, or its element ancestor of the scene's typical polygon area (`reach`: view_reach), holds view
+// hits. A polygon seen at one end (a corridor's 320 m floor through one doorway) is gathered near that
+// end only; the rest shows the solution, as unseen surfaces do. Every leaf where the hierarchy holds no
+// hits (no importance).
+bool in_view(const Hierarchy& h, uint32_t leaf, double reach);
+// The median input polygon's area, by area (16,384 times default_min_area): a room's wall or floor.
+double view_reach(const Hierarchy& h);
 
 // A set of emitters as half-open ranges of DirectGather's emitter indices, sorted and disjoint.
 using EmitterRanges = std::vector<std::pair<uint32_t, uint32_t>>;
@@ -72,23 +82,5 @@ class DirectGather {
   std::vector<uint32_t> polygon_emitter_;  // per input polygon: its emitter index, or UINT32_MAX
   std::vector<EmitterRanges> cluster_ranges_;  // per node (clusters only): its links' and its ancestors'
 };
-
-// The adaptive output mesh: a gathered leaf whose reflected direct light ρD, evaluated at its edges'
-// quarter, half and three-quarter points and its centre, departs from what Gouraud shading interpolates
-// between its corners by more than a quarter of its tolerance (e × what it shows: a shadow edge the
-// solution's elements do not follow) is split in four, the worst first, and its children are tested
-// again, level by level, while the new leaves stay within `budget`. The children take their parent's
-// solution (B, factors): they have no links of their own, so the gather at their vertices uses their
-// parent's (point_radiosity.h). In a fixed order: deterministic. Returns the splits.
-struct GatherRefinement {
-  const std::vector<uint8_t>* seen = nullptr;   // per input polygon, 1: gathered (null: all)
-  const std::vector<uint32_t>* twins = nullptr; // transmitting polygons (kNoTwin: none): split for both sides' lights
-  double error = kDefaultError;                 // relative to what the leaf shows
-  double white = 0;                             // the display's white (luminance, W/m²)
-  double min_area = 0;                          // no leaf below it
-  int max_depth = 16;
-  uint64_t budget = 0;                          // new leaves at most
-};
-uint64_t refine_for_gather(Hierarchy& h, const DirectGather& gather, const GatherRefinement& r, uint64_t& rays_cast);
 
 }  // namespace walkrad

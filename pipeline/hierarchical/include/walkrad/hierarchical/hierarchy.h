@@ -208,11 +208,12 @@ inline double projected_area(const HNode& n, const Vec3& d) {
 }
 
 // The four children of an element as Hierarchy::subdivide makes them: a quad by its bilinear
-// midpoints, a triangle by its edge midpoints (the fourth child the middle one).
+// midpoints, or, where one pair of its opposite sides is 4 times as long as the other, in 4 strips
+// across its long sides; a triangle by its edge midpoints (the fourth child the middle one).
 std::array<Polygon, 4> split_element(const Polygon& shape);
 
 // Which of split_element's four children holds sample_polygon(shape, u, v): a quad's bilinear
-// midpoint lines are its (u, v) = 0.5 lines; a triangle's corner children hold barycentric weights
+// midpoint lines are its (u, v) = 0.5 lines, its strips' borders u (or v) = k/4; a triangle's corner children hold barycentric weights
 // above 1/2. (quadrant_of from the point, without its three polygon tests.)
 uint32_t sample_quadrant(const Polygon& shape, double u, double v);
 

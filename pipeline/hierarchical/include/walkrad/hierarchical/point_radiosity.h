@@ -23,6 +23,12 @@
 
 namespace walkrad {
 
+// Whether LeafRadiosity takes link l of element r (a link on a leaf's chain) at each point of the leaves
+// below r by the point's own form factor, whether or not the point is gathered: a source element near r
+// (centre distance below 3 times the two radii), where the kernel changes within a share's quadrant.
+// Farther, the shares say enough (and a gathered point takes every element source at the point).
+bool taken_at_points(const Hierarchy& h, const HNode& r, const Link& l);
+
 // What the clusters' links push to each input polygon's element root (by its normal, as the solve
 // does), gathered once for a whole hierarchy.
 class ClusterGather {

@@ -16,6 +16,23 @@ inline Polygon quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material = 0) {
   return p;
 }
 
+// The axis-aligned rectangle coordinate[axis] = c, spanning [a0, a1] × [b0, b1] on the next two axes
+// in cyclic order (x: y, z; y: z, x; z: x, y), facing +axis (facing > 0) or −axis. Rooms and corridors
+// with walls of no thickness are made of these, one quad a side of each wall.
+inline Polygon rect(int axis, double c, double a0, double a1, double b0, double b1, int facing, uint32_t material = 0) {
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  auto at = [&](double a, double b) {
+    Vec3 p;
+    p[axis] = c;
+    p[i] = a;
+    p[j] = b;
+    return p;
+  };
+  Polygon q = quad(at(a0, b0), at(a1, b0), at(a1, b1), at(a0, b1), material);
+  if (facing < 0) std::swap(q.v[1], q.v[3]);
+  return q;
+}
+
 // A closed box [0,s]³ whose six faces face inwards, all of one material (reflectance rho,
 // emission e): the furnace, where B = E / (1 − ρ) exactly.
 inline Scene closed_box(double s, Vec3 rho, Vec3 e) {
