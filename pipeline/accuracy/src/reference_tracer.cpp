@@ -76,6 +76,8 @@ ReferenceTracer::ReferenceTracer(const Scene& scene, const RayScene& rays) : sce
       emitter_index_[i] = int32_t(emitters_.size());
       emitters_.push_back(i);
       emitter_area_.push_back(polygon_area(p));
+      emitter_power_.push_back(power);
+      emitter_centre_.push_back(polygon_centroid(p));
       total += power;
       emitter_cdf_.push_back(total);
     }
@@ -84,13 +86,39 @@ ReferenceTracer::ReferenceTracer(const Scene& scene, const RayScene& rays) : sce
   if (!emitter_cdf_.empty()) emitter_cdf_.back() = 1.0;
 }
 
+void ReferenceTracer::selection(const Vec3& x, const Vec3& n, Choice& choice) const {
+  choice.cdf.clear();
+  if (emitters_.size() > kSpatialEmitters) {
+    choice.cdf = emitter_cdf_;
+    return;
+  }
+  double total = 0;
+  for (size_t k = 0; k < emitters_.size(); ++k) {
+    const Polygon& e = scene_.polygons[emitters_[k]];
+    bool facing = false, before = false;  // some corner in front of x; x in front of the emitter
+    for (int c = 0; c < e.count && !facing; ++c) facing = dot(e.v[size_t(c)] - x, n) > 0;
+    before = dot(x - e.v[0], normals_[emitters_[k]]) > 0;
+    if (facing && before) {
+      const Vec3 d = emitter_centre_[k] - x;
+      total += emitter_power_[k] / (dot(d, d) + emitter_area_[k]);
+    }
+    choice.cdf.push_back(total);
+  }
+  if (!(total > 0)) {
+    choice.cdf.clear();
+    return;
+  }
+  for (double& c : choice.cdf) c /= total;
+  choice.cdf.back() = 1.0;
+}
+
 // Next-event estimate of the irradiance that emitters send straight to x (normal n).
-Vec3 ReferenceTracer::direct(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const {
-  if (emitters_.empty()) return {};
+Vec3 ReferenceTracer::direct(const Vec3& x, const Vec3& n, const Choice& choice, Rng& rng, uint64_t& rays) const {
   const double u = rng.uniform();
-  const size_t k = std::min(emitters_.size() - 1, size_t(std::upper_bound(emitter_cdf_.begin(), emitter_cdf_.end(), u) -
-                                                         emitter_cdf_.begin()));
-  const double pk = emitter_cdf_[k] - (k ? emitter_cdf_[k - 1] : 0.0);
+  if (choice.cdf.empty()) return {};
+  const size_t k = std::min(emitters_.size() - 1, size_t(std::upper_bound(choice.cdf.begin(), choice.cdf.end(), u) -
+                                                         choice.cdf.begin()));
+  const double pk = choice.of(k);
   const Polygon& e = scene_.polygons[emitters_[k]];
   const double u1 = rng.uniform(), u2 = rng.uniform();
   const Vec3 y = uniform_point(e, u1, u2);
@@ -150,10 +178,10 @@ Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, uint64_t& rays) con
   return E;
 }
 
-double ReferenceTracer::light_pdf(uint32_t polygon, double r2, double cos_y) const {
+double ReferenceTracer::light_pdf(const Choice& choice, uint32_t polygon, double r2, double cos_y) const {
   const int32_t k = emitter_index_[polygon];
   if (k < 0 || cos_y <= 0) return 0;
-  return (emitter_cdf_[size_t(k)] - (k ? emitter_cdf_[size_t(k) - 1] : 0.0)) / emitter_area_[size_t(k)] * r2 / cos_y;
+  return choice.of(size_t(k)) / emitter_area_[size_t(k)] * r2 / cos_y;
 }
 
 RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int samples, uint64_t seed, uint64_t stream,
@@ -163,13 +191,15 @@ RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int sampl
   const Material& m0 = scene_.materials[scene_.polygons[point.polygon].material];
   const double off = rays_.offset();
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, lum = 0, lum2 = 0;
+  thread_local Choice choice;  // the emitters' chances at the path's current vertex
   for (int s = 0; s < samples; ++s) {
     Vec3 value = m0.emission;
     Vec3 beta{1, 1, 1};  // multiplies the irradiance at the current point
     Vec3 x = point.position, n = normals_[point.polygon];
     scatter(m0, n, beta, rng);
     for (int bounce = 0; bounce < kMaxBounces && max_component(beta) > 0; ++bounce) {
-      value += mul(beta, direct(x, n, rng, rays) + punctual(x, n, rays));
+      selection(x, n, choice);
+      value += mul(beta, direct(x, n, choice, rng, rays) + punctual(x, n, rays));
       const double u1 = rng.uniform(), u2 = rng.uniform();
       const Vec3 dir = cosine_direction(n, u1, u2);
       ++rays;
@@ -184,7 +214,7 @@ RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int sampl
       if (!back && mq.emits()) {
         const Vec3 d = hit.position - x;
         const double cos_x = dot(n, dir);
-        value += mul(beta, mq.emission) * power_heuristic(cos_x / kPi, light_pdf(hit.polygon, dot(d, d), -dot(nq, dir)));
+        value += mul(beta, mq.emission) * power_heuristic(cos_x / kPi, light_pdf(choice, hit.polygon, dot(d, d), -dot(nq, dir)));
       }
       Vec3 side = back ? nq * -1.0 : nq;  // the side the ray arrives on
       scatter(mq, side, beta, rng);
