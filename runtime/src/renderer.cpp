@@ -101,7 +101,12 @@ void Renderer::begin_frame(int width, int height) const {
   glViewport(0, 0, width, height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);
+  // The chunks' materials are single-sided (glTF's doubleSided false), their triangles counter-clockwise
+  // seen from the front: back faces are culled, as the format asks. Drawn, the two faces of a wall of no
+  // thickness fought in the depth buffer (and the room side showed the corridor side's light).
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glUseProgram(program_);

@@ -79,9 +79,19 @@ struct Compared {
   double bake_mean = 0;       // luminance
 };
 
-// The bake read from 10 cm above each point along −n against the reference at the point.
+nlohmann::json manifest(const test::DefaultBake& b) {
+  std::ifstream in(b.folder() / "scene.bake" / "manifest.json");
+  return nlohmann::json::parse(in);
+}
+
+// The bake read from 10 cm above each point along −n against the reference at the point. What the
+// chunks' quantisation of _RADIOSITY may move a value (its documented bound, radiosity_tolerance of
+// the white B = π/exposure) is not counted: on the dim floor of a room seen beside a lamp it is a
+// tenth of the value, and it is the format's choice, not the solution's error.
 Compared compare(const test::DefaultBake& b, uint32_t polygon, const std::vector<Vec3>& points, const Vec3& n,
                  int samples = 16384) {
+  const nlohmann::json m = manifest(b);
+  const double quantum = m["settings"]["radiosity_tolerance"].get<double>() * kPi / m["exposure"].get<double>();
   std::vector<SurfacePoint> at;
   for (const Vec3& p : points) at.push_back({polygon, p});
   ReferenceSettings rs;
@@ -93,10 +103,11 @@ Compared compare(const test::DefaultBake& b, uint32_t polygon, const std::vector
   for (size_t k = 0; k < points.size(); ++k) {
     const BakeSampler::Sample s = b.sampler.along(points[k] + n * 0.1, n * -1.0);
     EXPECT_TRUE(s.hit && std::fabs(s.distance - 0.1) < 1e-3);
-    const double r = luminance(ref[k].B), baked = luminance(s.B), e = (baked - r) / r;
+    const double r = luminance(ref[k].B), baked = luminance(s.B);
+    const double e = std::copysign(std::max(0.0, std::fabs(baked - r) - quantum), baked - r) / r;
     if (std::getenv("WALKRAD_TEST_VERBOSE"))
-      std::printf("  (%.2f %.2f %.2f) bake %.4f reference %.4f ± %.4f (%+.1f%%)\n", points[k].x, points[k].y, points[k].z, baked,
-                  r, ref[k].luminance_error, 100 * e);
+      std::printf("  (%.2f %.2f %.2f) bake %.4f ± %.4f reference %.4f ± %.4f (%+.1f%%)\n", points[k].x, points[k].y, points[k].z,
+                  baked, quantum, r, ref[k].luminance_error, 100 * e);
     squares += e * e;
     c.worst = std::max(c.worst, std::fabs(e));
     c.sigma = std::max(c.sigma, ref[k].luminance_error / r);
@@ -216,8 +227,8 @@ TEST(LightThroughOpenings, ANarrowSlitLetsItsLightThrough) {
   const Compared c = compare(b, dark_floor, beam, {0, 1, 0}, 65536);
   std::printf("slit: its beam on the dark room's floor %.2f%% RMS, worst %.2f%% (reference σ up to %.2f%%)\n", 100 * c.rms,
               100 * c.worst, 100 * c.sigma);
-  EXPECT_LT(c.rms, 0.05);
-  EXPECT_LT(c.worst, 0.10);
+  EXPECT_LT(c.rms, 0.04);
+  EXPECT_LT(c.worst, 0.08);
 }
 
 }  // namespace
