@@ -6,9 +6,8 @@ in the first two rooms) for each room count, bakes it with the default settings 
 with `walkrad sweep` against a path-traced reference of the same points (made once per level and kept in the work
 folder: later runs reuse it). Prints the table of docs/accuracy.md.
 
-Usage: bench/corridor_level.py BUILD_DIR WORK_DIR [ROOMS ...] [--samples N] [--measure NAME=BAKE_DIR ...]
-  (default rooms 4 16 64, 131072 reference paths a point; --measure adds bakes made elsewhere, e.g. by another
-  build, measured against the same references)"""
+Usage: bench/corridor_level.py BUILD_DIR WORK_DIR [ROOMS ...] [--samples N] [--points N]
+  (default rooms 4 16 64, 131072 reference paths a point, 1024 points)"""
 import argparse
 import json
 import os

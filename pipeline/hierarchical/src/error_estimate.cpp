@@ -152,11 +152,16 @@ void Solver::measure_variation() {
       const uint32_t kids = n.cluster ? n.child_count : 4;
       if (n.links.empty() || kids < 2 || kids > 4) continue;
       // The refinement measures everything the links carry; the estimate, at a gathered receiver, only
-      // what they still bring to its vertices (the gather evaluates the emitters' light there).
+      // what its vertices take by the shares: the gather evaluates the emitters' light there, and the
+      // element sources' light is taken at each vertex too (point_radiosity.cpp, LeafRadiosity), so
+      // what those leave is the interpolation's departure between vertices, which the display
+      // refinement measures and adds (display_refinement.cpp). Counted at the shares as well, the
+      // estimate was twice the measured error on the Cornell box and on corridor levels.
       const bool gather = gathered(uint32_t(i));
       double H = 0, Hc[4] = {}, G = 0, Gc[4] = {}, inner = 0;
       for (const Link& l : n.links) {
-        const double b = luminance(link_sent(l)) * l.F, g = gather ? reflected_sent(l) * l.F : b;
+        const bool at_points = !h_[l.source].cluster && l.open > 0;
+        const double b = luminance(link_sent(l)) * l.F, g = gather ? (at_points ? 0.0 : reflected_sent(l) * l.F) : b;
         H += b;
         G += g;
         inner += b * double(l.inner) / 64.0;  // 0 but from a luminaire (evaluate_elements)
