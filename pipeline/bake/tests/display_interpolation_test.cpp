@@ -7,7 +7,7 @@
 //   is neither 0 nor more than twice the measured error.
 // - A floor lit only by a 1 m² emitter filling a window (every other surface black), two viewpoints on
 //   it: every point of the floor within 2% of ρ E F(x → window), where the light is at least a tenth of
-//   the floor's brightest.
+//   the floor's brightest, and the estimate within 0.5–2× of the floor's RMS error.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -115,19 +115,27 @@ TEST(DisplayInterpolation, AWindowLitFloorIsExactWhereTheViewpointsLook) {
       points.push_back({p, exact});
       brightest = std::max(brightest, exact);
     }
-  double worst = 0;
+  double worst = 0, squares = 0, reference = 0;
   size_t counted = 0;
   Vec3 at;
   for (const auto& [p, exact] : points) {
+    const double baked = baked_at(b, p);
+    squares += (baked - exact) * (baked - exact);
+    reference += exact * exact;
     if (exact < 0.1 * brightest) continue;
     ++counted;
-    const double e = std::fabs(baked_at(b, p) / exact - 1);
+    const double e = std::fabs(baked / exact - 1);
     if (e > worst) worst = e, at = p;
   }
-  std::printf("window-lit floor: %zu of %zu points at least a tenth of the brightest, worst %.2f%% at (%.2f, %.2f)\n", counted,
-              points.size(), 100 * worst, at.x, at.z);
+  const double rms = std::sqrt(squares / reference), estimate = estimated_error(b);
+  std::printf("window-lit floor: %zu of %zu points at least a tenth of the brightest, worst %.2f%% at (%.2f, %.2f); "
+              "RMS %.2f%%, estimate %.2f%%\n", counted, points.size(), 100 * worst, at.x, at.z, 100 * rms, 100 * estimate);
   EXPECT_GT(counted, points.size() / 2);
   EXPECT_LT(worst, 0.02);
+  // The estimate knows the interpolation it leaves (it said 0 when the vertices were exact and the
+  // faces between them were not).
+  EXPECT_GT(estimate, 0.5 * rms);
+  EXPECT_LT(estimate, 2.0 * rms);
 }
 
 }  // namespace

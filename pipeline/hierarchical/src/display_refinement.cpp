@@ -39,11 +39,18 @@ double interpolation_error(const HNode& n, const std::function<double(const Vec3
   return std::max(worst, std::fabs(shade(polygon_centroid(n.shape)) - interpolated));
 }
 
-// A gathered leaf: ρD as the final gather evaluates it, with shadow rays.
-double gathered_error(const Hierarchy& h, const DirectGather& g, uint32_t leaf, const Vec3& tau, uint64_t& rays) {
+// A gathered leaf: ρD as the final gather evaluates it, with shadow rays, from the emitters that can
+// move it: those whose light together stays below a quarter of the departure allowed (`allowed`) can
+// add at most twice that to the departure found (an interpolation of values in [0, b] departs from
+// them by at most b), and are left out of the test.
+double gathered_error(const Hierarchy& h, const DirectGather& g, uint32_t leaf, const Vec3& tau, double allowed,
+                      uint64_t& rays) {
   const HNode& n = h[leaf];
-  const EmitterRanges from = g.candidates(leaf);
   const Vec3 c = polygon_centroid(n.shape);
+  std::array<Vec3, 5> points{c};
+  for (int k = 0; k < n.shape.count; ++k) points[size_t(k + 1)] = n.shape.v[size_t(k)];
+  const EmitterRanges from = g.strongest(g.candidates(leaf), points.data(), size_t(n.shape.count + 1), n.normal, n.rho,
+                                         0.25 * allowed);
   return interpolation_error(n, [&](const Vec3& x) {
     Vec3 inward = c - x;
     const double len = length(inward);
@@ -131,8 +138,9 @@ uint64_t refine_display(Hierarchy& h, const DirectGather* g, const DisplayRefine
         if (n.depth >= r.max_depth || n.area * 0.25 < r.min_area) continue;
         if (!gathered(n) && !r.ungathered) continue;  // a split leaf's child out of view
         const double shown = std::clamp(luminance(n.B), 0.1 * r.white, r.white);
-        found[k] = gathered(n) ? gathered_error(h, *g, batch[k], tau_of(n), cast) : ungathered_error(h, emitted, batch[k]);
-        excess[k] = found[k] / (kInterpolationShare * r.error * shown);
+        const double allowed = kInterpolationShare * r.error * shown;
+        found[k] = gathered(n) ? gathered_error(h, *g, batch[k], tau_of(n), allowed, cast) : ungathered_error(h, emitted, batch[k]);
+        excess[k] = found[k] / allowed;
       }
       rays += cast;
     });

@@ -82,7 +82,7 @@ DirectGather::DirectGather(const Hierarchy& h, const std::vector<PunctualLight>*
     if (!n.cluster) continue;
     if (n.parent >= 0) cluster_ranges_[i] = cluster_ranges_[size_t(n.parent)];
     for (const Link& l : n.links)
-      if (l.F > 0 || l.sigma > 0) merge_ranges(cluster_ranges_[i], ranges_of(h[l.source]));
+      if (l.F > 0) merge_ranges(cluster_ranges_[i], ranges_of(h[l.source]));
   }
 }
 
@@ -104,8 +104,40 @@ EmitterRanges DirectGather::candidates(uint32_t leaf) const {
   int32_t a = int32_t(leaf);
   for (; a >= 0 && !h_[uint32_t(a)].cluster; a = h_[uint32_t(a)].parent)
     for (const Link& l : h_[uint32_t(a)].links)
-      if (l.F > 0 || l.sigma > 0) merge_ranges(out, ranges_of(h_[l.source]));
+      if (l.F > 0) merge_ranges(out, ranges_of(h_[l.source]));
   if (a >= 0) merge_ranges(out, cluster_ranges_[size_t(a)]);
+  return out;
+}
+
+std::vector<std::pair<double, uint32_t>> DirectGather::bounds(const EmitterRanges& from, const Vec3* points, size_t count,
+                                                              const Vec3& n, const Vec3& rho) const {
+  std::vector<std::pair<double, uint32_t>> out;
+  for (const auto& [lo, hi] : from)
+    for (uint32_t k = lo; k < hi; ++k) {
+      const Emitter& e = emitters_[k];
+      double most = 0;
+      for (size_t i = 0; i < count; ++i)
+        if (dot(points[i] - e.shape.v[0], e.normal) > 0) most = std::max(most, point_to_polygon(points[i], n, e.shape));
+      out.push_back({luminance(mul(rho, e.emission)) * most, k});
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+EmitterRanges DirectGather::strongest(const EmitterRanges& from, const Vec3* points, size_t count, const Vec3& n,
+                                      const Vec3& rho, double negligible) const {
+  const std::vector<std::pair<double, uint32_t>> bound = bounds(from, points, count, n, rho);
+  size_t first = 0;
+  for (double sum = 0; first < bound.size() && sum + bound[first].first <= negligible; ++first) sum += bound[first].first;
+  if (first == 0) return from;
+  std::vector<uint32_t> kept;
+  for (size_t i = first; i < bound.size(); ++i) kept.push_back(bound[i].second);
+  std::sort(kept.begin(), kept.end());
+  EmitterRanges out;
+  for (uint32_t k : kept) {
+    if (!out.empty() && out.back().second == k) ++out.back().second;
+    else out.push_back({k, k + 1});
+  }
   return out;
 }
 

@@ -106,6 +106,35 @@ TEST_F(FinalGather, TakesTheEmittersTheLinksReach) {
   EXPECT_EQ(cast, 0u);
 }
 
+TEST(FinalGatherBounds, TheFaintestEmittersAreLeftOutWithinWhatIsNegligible) {
+  // Two lamps over a floor point: one 1 m above, one 20 m away along the floor's plane and 1 m up. What
+  // each could give is ρ E F by the contour formula; left out while their sum stays within `negligible`.
+  Scene s;
+  s.source = "two lamps";
+  s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {0, 0, 0}});
+  s.materials.push_back({"lamp", {0, 0, 0}, {kEmission, kEmission, kEmission}});
+  s.polygons.push_back(quad({-2, 0, -2}, {-2, 0, 22}, {2, 0, 22}, {2, 0, -2}, 0));
+  s.polygons.push_back(quad({-0.25, 1, -0.25}, {0.25, 1, -0.25}, {0.25, 1, 0.25}, {-0.25, 1, 0.25}, 1));
+  s.polygons.push_back(quad({-0.25, 1, 19.75}, {0.25, 1, 19.75}, {0.25, 1, 20.25}, {-0.25, 1, 20.25}, 1));
+  const ClusterTree tree = build_cluster_tree(s);
+  const RayScene rays(s);
+  const Hierarchy h(s, tree);
+  const DirectGather g(h, nullptr, &rays);
+  ASSERT_EQ(g.emitter_count(), 2u);
+  const Vec3 x(0, 0, 0), up(0, 1, 0), rho(0.5, 0.5, 0.5);
+  const double near = 0.5 * kEmission * point_to_polygon(x, up, s.polygons[1]);
+  const double far = 0.5 * kEmission * point_to_polygon(x, up, s.polygons[2]);
+  ASSERT_GT(near, 1000 * far);
+  const auto bounds = g.bounds({{0, 2}}, &x, 1, up, rho);
+  ASSERT_EQ(bounds.size(), 2u);
+  EXPECT_NEAR(bounds[0].first, far, 1e-12 * near);  // ascending
+  EXPECT_NEAR(bounds[1].first, near, 1e-12 * near);
+  const uint32_t near_index = bounds[1].second;
+  EXPECT_EQ(g.strongest({{0, 2}}, &x, 1, up, rho, 0.0), (EmitterRanges{{0, 2}}));
+  EXPECT_EQ(g.strongest({{0, 2}}, &x, 1, up, rho, far), (EmitterRanges{{near_index, near_index + 1}}));
+  EXPECT_EQ(g.strongest({{0, 2}}, &x, 1, up, rho, near + far), EmitterRanges{});
+}
+
 TEST(EmitterRanges, MergeSortedAndDisjoint) {
   EmitterRanges a = {{0, 2}, {5, 7}};
   merge_ranges(a, {{1, 3}, {7, 9}, {12, 13}});

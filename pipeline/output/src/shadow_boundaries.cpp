@@ -32,10 +32,32 @@ bool height_range(double ha, double hb, double lo, double hi, double& t0, double
   return t1 > t0;
 }
 
+// Clips segment [a, b] to the box (padded by pad): false where nothing of it is inside (slabs).
+bool clip_to_box(const Bounds& box, double pad, Vec3& a, Vec3& b) {
+  double t0 = 0, t1 = 1;
+  const Vec3 d = b - a;
+  const double lo[3] = {box.lo.x - pad, box.lo.y - pad, box.lo.z - pad}, hi[3] = {box.hi.x + pad, box.hi.y + pad, box.hi.z + pad};
+  const double o[3] = {a.x, a.y, a.z}, v[3] = {d.x, d.y, d.z};
+  for (int k = 0; k < 3; ++k) {
+    if (v[k] == 0) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    const double u0 = (lo[k] - o[k]) / v[k], u1 = (hi[k] - o[k]) / v[k];
+    t0 = std::max(t0, std::min(u0, u1));
+    t1 = std::min(t1, std::max(u0, u1));
+    if (t0 >= t1) return false;
+  }
+  const Vec3 a0 = a;
+  a = a0 + d * t0;
+  b = a0 + d * t1;
+  return length(b - a) > pad;
+}
+
 }  // namespace
 
 std::vector<BoundarySegment> shadow_boundaries(const Polygon& emitter, const Polygon& receiver,
-                                               const std::vector<Polygon>& occluders, double tol) {
+                                               const std::vector<Polygon>& occluders, double tol, const Bounds* within) {
   std::vector<BoundarySegment> out;
   const Vec3 qn = polygon_normal(receiver), en = polygon_normal(emitter);
   const Vec3 q0 = receiver.v[0];
@@ -85,7 +107,8 @@ std::vector<BoundarySegment> shadow_boundaries(const Polygon& emitter, const Pol
   };
   // flips(middle): the emitter point seen to appear or vanish there.
   auto add = [&](Vec3 a, Vec3 b, const auto& flips) {
-    if (clip_to(receiver, qn, a, b, tol)) out.push_back({a, b, flips((a + b) * 0.5)});
+    if (clip_to(receiver, qn, a, b, tol) && (!within || clip_to_box(*within, tol, a, b)))
+      out.push_back({a, b, flips((a + b) * 0.5)});
   };
   // Heights of the points that cast: below the emitter's corner (or edge point) by a thousandth of
   // its height at least, so that a projection stays within a thousand times the distance.

@@ -57,6 +57,41 @@ TEST(ShadowBoundaries, PanelHalfwayCastsItsPenumbraAndUmbraLines) {
   EXPECT_EQ(hit.size(), 8u);  // every line, both ways
 }
 
+TEST(ShadowBoundaries, ABoxKeepsOnlyWhatCrossesIt) {
+  // The panel's lines clipped to the floor's quarter x, z in [0, 2]: the parts of x = 0.3 and 0.7 with
+  // z ≥ 0 and of z = 0.3 and 0.7 with x ≥ 0, each a part of an unclipped segment on the same line,
+  // and the flipping emitter point of each taken at its own middle (on the light's outline).
+  const Polygon panel = test::quad({-0.1, 1, -0.1}, {0.1, 1, -0.1}, {0.1, 1, 0.1}, {-0.1, 1, 0.1});
+  Bounds quarter;
+  quarter.extend(Vec3{0, 0, 0});
+  quarter.extend(Vec3{2, 0, 2});
+  const std::vector<BoundarySegment> all = shadow_boundaries(light(), floor_quad(), {panel}, 1e-9);
+  const std::vector<BoundarySegment> kept = shadow_boundaries(light(), floor_quad(), {panel}, 1e-9, &quarter);
+  ASSERT_FALSE(kept.empty());
+  EXPECT_LT(kept.size(), all.size());
+  std::set<std::pair<int, bool>> hit;
+  for (const BoundarySegment& g : kept) {
+    for (const Vec3& x : {g.a, g.b}) {
+      EXPECT_GE(x.x, -2e-9);  // the box is padded by tol
+      EXPECT_GE(x.z, -2e-9);
+    }
+    bool along_z = false;
+    const int k = on_line(g, {0.3, 0.7}, along_z);
+    EXPECT_GE(k, 0) << "(" << g.a.x << ", " << g.a.z << ")-(" << g.b.x << ", " << g.b.z << ")";
+    if (k >= 0) hit.insert({k, along_z});
+    EXPECT_NEAR(g.flips.y, 2, 1e-9);
+    EXPECT_NEAR(std::max(std::fabs(g.flips.x), std::fabs(g.flips.z)), 0.5, 1e-9);
+    bool inside_one = false;  // a part of some unclipped segment
+    for (const BoundarySegment& u : all) {
+      const Vec3 d = u.b - u.a;
+      auto on = [&](const Vec3& x) { return length(cross(x - u.a, d)) <= 1e-9 * length(d) && dot(x - u.a, d) >= -1e-9 && dot(x - u.b, d) <= 1e-9; };
+      inside_one = inside_one || (on(g.a) && on(g.b));
+    }
+    EXPECT_TRUE(inside_one);
+  }
+  EXPECT_EQ(hit.size(), 4u);  // x = 0.3, 0.7 along z; z = 0.3, 0.7 along x
+}
+
 TEST(ShadowBoundaries, NothingFromAnOccluderOutsideTheLightsReach) {
   const Polygon above = test::quad({-0.1, 3, -0.1}, {0.1, 3, -0.1}, {0.1, 3, 0.1}, {-0.1, 3, 0.1});  // above the light
   const Polygon below = test::quad({-0.1, -1, -0.1}, {0.1, -1, -0.1}, {0.1, -1, 0.1}, {-0.1, -1, 0.1});  // under the floor

@@ -1,10 +1,11 @@
-// The final gather's direct part (issue 23; the "reconstruction" pass of Lischinski, Tampieri &
+// The final gather's direct part (the "reconstruction" pass of Lischinski, Tampieri &
 // Greenberg 1992; Reichert 1992): at an output vertex the walkthrough sees, the irradiance from every
 // area emitter is evaluated at the point instead of taken from the links,
 //   D(x) = Σ_e E_e · F(dx → e) · V̄_e(x),
 //   V̄_e(x) = Σ_k K(x, y_k) V(x, y_k) / Σ_k K(x, y_k),   K = cos θ_x cos θ_y / r²,
 // F the contour formula (exact, form_factor.h) and V̄ the kernel-weighted fraction of the emitter that x
-// sees, over stratified points y_k of the emitter: 16, and 64 more where they disagree (a penumbra).
+// sees, over stratified points y_k of the emitter: 16 (and its corners), and kVertexPenumbra² more where
+// they disagree (a penumbra).
 // Punctual lights are added at the point as before (punctual_lights.h). The solution then brings only
 // indirect light to the vertex (point_radiosity.h: sources send Bt − their emission), so a shadow's edge
 // is as sharp as the output mesh, not as the links' shares.
@@ -58,6 +59,17 @@ class DirectGather {
 
   // The emitters that can light a leaf element: under the sources of the links on its chain.
   EmitterRanges candidates(uint32_t leaf) const;
+
+  // What each emitter of `from` could give unoccluded, as luminance (emission × the contour form
+  // factor, reflectance `rho`), at the most it gives at any of `points` (unit normal n): (bound, emitter),
+  // ascending (ties by emitter). Far emitters behind a linked cluster (a wing's lamps past a doorway)
+  // would cost every point their shadow rays for light that cannot matter.
+  std::vector<std::pair<double, uint32_t>> bounds(const EmitterRanges& from, const Vec3* points, size_t count,
+                                                  const Vec3& n, const Vec3& rho) const;
+  // The emitters of `from` less the faintest, left out while the sum of what they could give stays at
+  // or below `negligible`.
+  EmitterRanges strongest(const EmitterRanges& from, const Vec3* points, size_t count, const Vec3& n, const Vec3& rho,
+                          double negligible) const;
 
   // Irradiance at x (unit normal n) from the emitters in `from` and every punctual light. inward: a
   // unit direction in the surface towards its faces around x (zero inside them): shadow rays leave

@@ -26,9 +26,11 @@ struct BoundarySegment {
 };
 
 // The EV and VE boundaries cast on `receiver`'s plane by `emitter` (its front towards the receiver)
-// past `occluders`, clipped to the receiver. tol: lengths below it are points (a segment shorter is
-// dropped; an occluder lying in the receiver's plane casts nothing).
+// past `occluders`, clipped to the receiver (and to the box `within`, padded by tol, where given). tol:
+// lengths below it are points (a segment shorter is dropped; an occluder lying in the receiver's plane
+// casts nothing).
 std::vector<BoundarySegment> shadow_boundaries(const Polygon& emitter, const Polygon& receiver,
-                                               const std::vector<Polygon>& occluders, double tol);
+                                               const std::vector<Polygon>& occluders, double tol,
+                                               const Bounds* within = nullptr);
 
 }  // namespace walkrad
