@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What the effect plan saves (issue 10): each example baked with its effect plan and with every effect
+"""What the effect plan saves: each example baked with its effect plan and with every effect
 that costs work forced on (indirect light, visibility rays, importance where there are viewpoints),
 median of RUNS bakes each, 2 threads. Prints the table for docs/performance.md.
 

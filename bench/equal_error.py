@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Importance-driven against view-independent at equal error (issues 4 and 8): for each importance-driven
+"""Importance-driven against view-independent at equal error: for each importance-driven
 run of a `walkrad sweep`, the view-independent run with the same weighted error, interpolated log-log
 between the two that bracket it, and the ratios of their CPU time, wall time and links.
 Usage: bench/equal_error.py SWEEP_DIR"""

@@ -1,7 +1,6 @@
 #!/usr/bin/env python3
-"""Issue 22's figures: what the requested error delivers, measured by `walkrad sweep` against its
-path-traced reference (never against another bake). Prints the tables of docs/accuracy.md's "Error
-control" section.
+"""What the requested error delivers, measured by `walkrad sweep` against its path-traced reference
+(never against another bake). Prints the tables for docs/accuracy.md.
 
 - Cornell box (its camera): --errors 0.4,0.2,0.1,0.05, importance-driven and view-independent;
   reference 1,024 points × 131,072 paths.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What the final gather costs (issue 23), or its discontinuity meshing: the default bake with and
+"""What the final gather costs, or its discontinuity meshing: the default bake with and
 without the effect (--effect EFFECT=off; EFFECT gather or discontinuities), alternating, the phases from
 report.json (solve; gather: the adaptive mesh's tests and splits; mesh: the discontinuity cuts, the
 vertices' point evaluation and the gather's direct light), the triangles and the chunk bytes. The

@@ -1,4 +1,4 @@
-// What a link's unoccluded form factor costs (issue 26): the contour formula at a point, and a cluster
+// What a link's unoccluded form factor costs: the contour formula at a point, and a cluster
 // link's polygon pairs integrated pair by pair from scratch (element_to_element on two polygons)
 // against the same pairs with each polygon prepared once (ElementEnd, ReceiverPoints), as
 // exact_unoccluded runs them. One thread; the sums are the same bits either way (ContourBits tests).

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Large levels against their rays (issue 26): generates office-floor levels of the given room counts
+"""Large levels against their rays: generates office-floor levels of the given room counts
 (examples/office-floor/make_office_floor.py, full detail, the walkthrough in 2 rooms), bakes each with
 build/bench/walkrad_level_rays_bench (importance-driven; view-independent too with --vi), and prints
 the table for docs/performance.md: per phase seconds, rays and peak memory, and the solve's rays per

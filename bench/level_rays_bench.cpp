@@ -1,10 +1,10 @@
-// A large level's bake against its rays (issue 26): bakes a scene as `walkrad bake` does, keeping a
+// A large level's bake against its rays: bakes a scene as `walkrad bake` does, keeping a
 // sample of the hierarchical solve's Embree rays (RaySample: the links of one (receiver, source) hash
 // bucket in `every`), then casts the same sampled rays in a bare loop of rtcOccluded1 calls on as many
-// threads (the reference issue 26 names), against which the solve's rays per second (all its rays over
+// threads (the machine's reference rate), against which the solve's rays per second (all its rays over
 // its wall time) are read; and again as the solve casts them, each link's rays in one stream call
 // (RayScene::occluded: rtcOccluded1M, coherent), which runs about twice as fast: the machine's limit
-// for the solve's rays (docs/performance.md). Prints one JSON object: the report's phases (seconds,
+// for the solve's rays. Prints one JSON object: the report's phases (seconds,
 // peak memory, rays where report.json counts them), the links, the three rates, and each solve round's
 // rays per second against the bare loop. bench/large_level.py runs it over office-floor levels and
 // prints the tables in docs/performance.md.

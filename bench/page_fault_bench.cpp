@@ -1,6 +1,6 @@
 // What fresh memory costs on this machine: the solve's node-sized arrays are freed and taken again
 // round after round (glibc maps a block over 32 MiB afresh and unmaps it when freed), and each 4 KiB
-// page is a fault at its first write. docs/performance.md, "The correction's cluster arrays".
+// page is a fault at its first write: the cost that core/huge_pages.h avoids.
 //
 //   build/bench/walkrad_page_fault_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A bake over several ranks against one process (issue 28, docs/scaling.md): generates an office-floor
+"""A bake over several ranks against one process (see docs/scaling.md): generates an office-floor
 level (examples/office-floor/make_office_floor.py, full detail, the walkthrough in 2 rooms) and bakes it
 with --solver jacobi as one process of 1 and of 2 threads and as mpirun -np 2 ranks of 1 thread, one
 after another, each under /usr/bin/time -v; prints the table for docs/scaling.md (wall, solve, gather

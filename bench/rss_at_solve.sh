@@ -1,7 +1,7 @@
 #!/bin/bash
 # Resident memory of a bake a moment into its solve (what a level holds before its links), then stops
 # the bake. usage: bench/rss_at_solve.sh WALKRAD SCENE VIEWS [DELAY_SECONDS, default 3]
-# (docs/performance.md, "The 150-room level").
+# (Used for the 150-room level: what it holds before its links.)
 B=$1; S=$2; V=$3; DELAY=${4:-3}
 out=$(mktemp -d)
 coproc BAKE { exec "$B" bake "$S" --views "$V" -o "$out/bake" --threads 2 2>&1; }

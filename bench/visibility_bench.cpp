@@ -1,4 +1,4 @@
-// Visibility throughput (issue 3): rays per second of the form factor stage's visibility against a bare
+// Visibility throughput: rays per second of the form factor stage's visibility against a bare
 // loop of rtcOccluded1 calls on the very same rays (the machine's limit), and against Embree's stream
 // interface alone. One thread throughout, so the figures compare like with like.
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Volumetric against exact visibility on the dense hedge (examples/dense-hedge, issue 7): bake time
+"""Volumetric against exact visibility on the dense hedge (examples/dense-hedge): bake time
 (median of RUNS), Embree rays, grid integrations, links by kind of visibility, and the relative RMS
 difference of the wall's radiosity as the walkthrough's camera sees it (96 x 96 rays, through
 bench/walkrad_compare_bakes). Prints the table for docs/performance.md.

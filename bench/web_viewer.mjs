@@ -1,4 +1,4 @@
-// The web viewer beside walkrad-view (issue 25, docs/performance.md): time to first frame and frame
+// The web viewer beside walkrad-view: time to first frame and frame
 // times playing a bake's whole path once at 30 frames/s, no budget, at one size. walkrad-view runs
 // headless on Mesa (its stats.json); the web viewer in Debian's chromium on SwiftShader
 // (web/test/harness.mjs), after `walkrad web` on a copy of the bake. Both times are CPU rendering.

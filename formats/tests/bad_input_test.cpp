@@ -1,4 +1,4 @@
-// Bad input is refused cleanly (issues 9 and 12): every prefix of a .glb, lying GLB lengths, JSON
+// Bad input is refused cleanly: every prefix of a .glb, lying GLB lengths, JSON
 // nested too deep, node hierarchies that are not trees, NaN and out-of-range values, devices in
 // place of files. Each refusal is an InputError naming the file, the place and the rule, with the
 // documented exit code (README.md, "Exit codes"); limits give kExitLimitReached.
@@ -168,7 +168,7 @@ TEST_F(BadInput, NodeHierarchiesMustBeShallowStrictTrees) {
   expect_refused([&] { read_gltf(d); }, d, kExitBadInput, {"nodes[44]", "reached twice"});
 }
 
-// EXT_lights_ies (issue 24): a profile by data URI, placed by a node with a multiplier and a colour
+// EXT_lights_ies: a profile by data URI, placed by a node with a multiplier and a colour
 // (clamped to [0, 1] as the extension says); broken references and profiles refused naming the place.
 TEST_F(BadInput, IesLightsInGltf) {
   const std::string ies = "IESNA:LM-63-2002\r\nTILT=NONE\r\n1 -1 1 2 1 1 2 0 0 0\r\n1 1 10\r\n0 90\r\n0\r\n40 20\r\n";
@@ -235,7 +235,7 @@ TEST_F(BadInput, DevicesAreNotFiles) {
   expect_refused([&] { read_mgf(m); }, m, kExitBadInput, {"line 1", "cannot open included file"});
 }
 
-// Issue 9: non-finite coordinates, reflectance ≥ 1 or < 0, negative emission: exit 3 with the place.
+// Non-finite coordinates, reflectance ≥ 1 or < 0, negative emission: exit 3 with the place.
 TEST_F(BadInput, NonFiniteCoordinatesNameTheAccessor) {
   Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -290,7 +290,7 @@ TEST_F(BadInput, MaterialsOutOfRangeNameTheMaterial) {
   expect_refused([&] { read_mgf(huge); }, huge, kExitBadInput, {"line 8", "beyond ±1e9 m after the transform"});
 }
 
-// Issue 9: zero-area triangles and repeated vertices are dropped and counted, the rest is read.
+// Zero-area triangles and repeated vertices are dropped and counted, the rest is read.
 TEST_F(BadInput, DegenerateTrianglesAreDroppedAndCounted) {
   Bytes glb = read_bytes(kSeeds + "gltf/quad.glb");
   const uint16_t repeated[6] = {0, 1, 2, 0, 2, 2};  // the second triangle repeats a vertex

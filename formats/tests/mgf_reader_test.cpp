@@ -417,7 +417,7 @@ Material material_of(const std::string& definition) {
 }
 
 TEST(MgfReader, GreyReflectanceAndEmission) {
-  // The issue's case: grey cxy 0.333 0.333 with rd 0.5 gives 0.5 in every channel.
+  // A grey by chromaticity: cxy 0.333 0.333 with rd 0.5 gives 0.5 in every channel.
   const Material grey = material_of("m g =\n c\n  cxy 0.333 0.333\n rd 0.5");
   expect_near(grey.reflectance, {0.5, 0.5, 0.5}, 1e-3);
   // ed in lm/m² / 179 lm/W = W/m² of emitted radiosity.
@@ -530,7 +530,7 @@ TEST(MgfReader, ObjectsAndUnknownEntities) {
   EXPECT_TRUE(has_warning(s, "1 objects (o) left open"));
 }
 
-// ies (issue 24): a luminaire per array instance at its transform's origin, aimed along the
+// ies: a luminaire per array instance at its transform's origin, aimed along the
 // transform's −Z with its +Y as the profile's 90° plane; candela × multiplier ÷ 179 lm/W per channel
 // in the current colour; the profile read once and shared; a missing or bad profile names its file.
 TEST(MgfReader, IesLuminaires) {

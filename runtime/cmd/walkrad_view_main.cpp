@@ -1,4 +1,4 @@
-// walkrad-view: plays a bake (docs/architecture.md, "Commands"). Parses the command line, picks
+// walkrad-view: plays a bake (see docs/architecture.md). Parses the command line, picks
 // headless or window mode, and turns every failure into a message and an exit code (error.h).
 //
 //   walkrad-view BAKE_DIR [--headless] [--frames DIR] [--width W] [--height H] [--path FILE]

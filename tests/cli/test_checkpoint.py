@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checkpoints of the solve (issue 28, --checkpoint DIR and --resume; pipeline/bake/src/checkpoint_file.h):
+"""Checkpoints of the solve (--checkpoint DIR and --resume; pipeline/bake/src/checkpoint_file.h):
 the Cornell box's default bake, killed (SIGKILL) right after its 3rd or 5th refinement round, resumed in
 one process or over 2 ranks, or stopped by --max-seconds and resumed, gives chunks and a manifest
 byte-identical to a bake that ran through (with --solver jacobi too, killed over 2 ranks); a bake with --checkpoint is itself unchanged and removes its

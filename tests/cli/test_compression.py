@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draco on real output (issue 5): the Cornell box's chunks are at least 5× smaller than the same bake
+"""Draco on real output: the Cornell box's chunks are at least 5× smaller than the same bake
 uncompressed, and decode back to the same vertices with _RADIOSITY within the stated error (walkrad diff,
 relative RMS ≤ 1e-3). Usage: test_compression.py WALKRAD SOURCE_DIR WORK_DIR"""
 import glob

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The example consuming project (examples/consumer) bakes its level through walkrad_add_bake, and
 re-bakes only when it should: after touching the scene or changing a setting, not after touching an
-unrelated source file, not on a plain rebuild (issue 5). Usage: test_consumer.py WALKRAD SOURCE_DIR WORK_DIR"""
+unrelated source file, not on a plain rebuild. Usage: test_consumer.py WALKRAD SOURCE_DIR WORK_DIR"""
 import os
 import shutil
 import subprocess

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The IES room (issue 24, examples/ies-room): three luminaires described by IES profiles.
+"""The IES room (examples/ies-room): three luminaires described by IES profiles.
 - `walkrad bake` bakes it: the effect plan counts 3 IES luminaires, the energy audit balances;
 - the Khronos validator accepts every chunk with 0 errors and 0 warnings;
 - walkrad-view plays the camera headless: a frame, lit (no black picture);

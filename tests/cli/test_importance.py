@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Importance puts the effort where the walkthrough looks (issue 4): on a 4-room office floor whose
+"""Importance puts the effort where the walkthrough looks: on a 4-room office floor whose
 walkthrough enters 2 rooms, the importance-driven bake meshes the visited rooms' floors much more finely
 than the unvisited ones' (the same floor, cut by the same furniture), while the unvisited rooms still get a
 finite, lit solution.

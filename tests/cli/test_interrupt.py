@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A bake killed midway (SIGKILL: no chance to clean up) leaves the previous output intact and readable;
-the next bake clears the dead bake's staging folder (issue 5). Usage: test_interrupt.py WALKRAD SOURCE_DIR WORK_DIR"""
+the next bake clears the dead bake's staging folder. Usage: test_interrupt.py WALKRAD SOURCE_DIR WORK_DIR"""
 import glob
 import os
 import shutil

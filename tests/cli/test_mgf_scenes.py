@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Every classic MGF scene in ../shared/scenes/mgf loads and bakes view-independently with finite,
-non-negative radiosity and a plausible power balance (issue 11). Skipped (exit 0, said so) when the
+non-negative radiosity and a plausible power balance. Skipped (exit 0, said so) when the
 scenes are not beside the repository. Usage: test_mgf_scenes.py WALKRAD SOURCE_DIR WORK_DIR"""
 import json
 import math

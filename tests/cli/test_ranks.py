@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A bake over several ranks (issue 28, walkrad/core/ranks.h): the Cornell box (defaults) and a 1-room
+"""A bake over several ranks (walkrad/core/ranks.h): the Cornell box (defaults) and a 1-room
 office-floor level (draft) baked with mpirun at 1, 2 and 3 ranks (one thread each) give chunks and a manifest byte-identical
 to the plain bake's, with Gauss-Seidel (links on every rank) and with Jacobi sweeps (links divided among
 the ranks, each holding fewer), report the ranks and the bytes they exchanged, and leave no scratch folder; rank 1
@@ -95,7 +95,7 @@ for name, (folder, args) in scenes.items():
 # their rank). The bakes at 1, 2 and 3 ranks are one process's with --solver jacobi, byte for byte; each
 # rank holds fewer links than one process, the office level's ranks about as many each, and at 2 ranks
 # its links' peak memory over the whole bake (a count of bytes, not a measurement: the same every run;
-# noted in each round and after the mesh) is at most 0.65 of one process's (issue 28; 0.6 before hidden links were settled).
+# noted in each round and after the mesh) is at most 0.65 of one process's (settling hidden links takes it above 0.6).
 for name, (folder, args) in scenes.items():
     args = [*args, "--solver", "jacobi"]
     plain = os.path.join(work, name + "-jacobi-plain")

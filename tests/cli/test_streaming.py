@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Streaming along the authored path (issue 6): walkrad-view plays a bake's walkthrough headless at 30
+"""Streaming along the authored path: walkrad-view plays a bake's walkthrough headless at 30
 frames/s, with no budget and with a budget of a third of the bytes that every chunk takes resident
 (more where one viewpoint alone needs nearly that: below).
 With the budget: every frame is byte-identical to the one drawn with everything resident (PNGs from

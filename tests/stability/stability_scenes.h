@@ -1,4 +1,4 @@
-// Hard scenes for the stability suite (issue 9), generated in code, and both solvers run on them the
+// Hard scenes for the stability suite, generated in code, and both solvers run on them the
 // way `walkrad bake` runs them (contact splitting, Embree visibility, cluster-tree shaft culling), so
 // that each test can hold the solution to an exact or bounded expectation.
 #pragma once

@@ -1,4 +1,4 @@
-// The stability suite (issue 9): hard scenes with exact or bounded expectations, each stated for the
+// The stability suite: hard scenes with exact or bounded expectations, each stated for the
 // method it holds for. Classic = uniform elements, full form factor matrix, Gauss-Seidel with the
 // aggregation correction (gauss_seidel.h). Hierarchical = links, push-pull, Gauss-Seidel by polygon.
 // Every scene is also solved with 1 and 2 threads: the results must be identical to the bit.
@@ -321,7 +321,7 @@ TEST(Contacts, HierarchicalNoLeakNoNegative) {
   // inner faces turned towards the source take a little: 1.6e-4 W/m², 1.5e-5 of the lamp's 10 W/m²
   // (1.8e-4 of the lit walls' 0.86: 0.6 of one step of an 8-bit sRGB display that shows those walls
   // white). Held 6× above it, which is 17× below what the error promises a dark surface, the
-  // requested error × 10% of the white (docs/numerics.md, "Error control"; measured 110× below it).
+  // requested error × 10% of the white (see docs/numerics.md; measured 110× below it).
   EXPECT_LE(largest_in_dark_room(s), 1e-4 * 10);
   EXPECT_LE(s.audit.imbalance(), 1e-4);
   // Finer, the link goes down to the dark room's faces, whose every ray is blocked. Two leaks were
@@ -586,7 +586,7 @@ TEST_F(BadGeometry, NonPhysicalValuesAreRefusedNamingThePlace) {
 }
 
 
-// ---- Reflectance 1 (issue 24): a floor that absorbs nothing, in the closed room whose other
+// ---- Reflectance 1: a floor that absorbs nothing, in the closed room whose other
 // surfaces absorb, has a solution: baked with a warning, finite, brighter than the room with a
 // grey floor, and its energy audit balances (the default method within 1e-4). The same room with every surface at ρ = 1, lamp
 // included, has none: refused, saying why, nothing written. Open (no ceiling), it lets light out and

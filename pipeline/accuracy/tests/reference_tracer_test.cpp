@@ -57,7 +57,7 @@ INSTANTIATE_TEST_SUITE_P(Reflectances, ReferenceFurnace, ::testing::Values(0.5, 
 // comes back, and what leaves them inwards is still E + ρ × the inside's uniform irradiance, so B =
 // E / (1 − ρ) whatever τ. This holds the reflected branch's reweighting by its probability (ρ chosen
 // with probability ρ / (ρ + τ)) and that the outer side brings nothing; what transmission brings from
-// the other side has no exact case here (the lamp room's sweep measures it, docs/accuracy.md).
+// the other side has no exact case here (the lamp room's sweep measures it).
 TEST(ReferenceFurnace, TransmittingWallsKeepEOverOneMinusRho) {
   const double rho = 0.5;
   const Vec3 e(1.0, 2.0, 0.5);

@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
   diff_cmd->add_option("--position-tolerance", ds.position_tolerance, "vertex matching, fraction of the bake's diagonal")
       ->check(CLI::PositiveNumber)->capture_default_str();
 
-  // web: the web viewer copied into a bake folder (web/, issue 25).
+  // web: the web viewer copied into a bake folder (web/).
   std::string web_dir, web_viewer = default_web_viewer_dir();
   CLI::App* web_cmd = app.add_subcommand("web", "copy the web viewer into a bake folder (then serve it: python3 -m http.server)");
   web_cmd->add_option("bake", web_dir, "bake folder")->required();

@@ -82,8 +82,8 @@ json BakeSettings::to_json() const {
 
 double quality_error(const std::string& quality) {
   // The presets light bakers offer, as the refinement's tolerance relative to what each surface shows
-  // (docs/accuracy.md measures what each delivers: at medium, the default, 1.0% weighted RMS on the
-  // Cornell box and 2.0% in office-floor's visited rooms, a twentieth and a tenth of it).
+  // (at medium, the default, about 1% weighted RMS on the Cornell box and 2% in office-floor's visited
+  // rooms, a twentieth and a tenth of it).
   if (quality == "draft") return kDraftError;
   if (quality == "medium") return kMediumError;
   if (quality == "high") return kHighError;
@@ -244,7 +244,7 @@ BakeSummary bake(const BakeSettings& s) {
   manifest.settings = s.to_json();
   manifest.effects = plan.to_json();
   // Each chunk encoded (Draco) and written on its own, so in parallel: the same files, and the manifest
-  // lists them in order (5.3 s on one thread for the 150-room level's chunks: docs/performance.md).
+  // lists them in order (5.3 s on one thread for the 150-room level's chunks).
   manifest.chunks.resize(cut.meshes.size());
   tbb::parallel_for(size_t(0), cut.meshes.size(), [&](size_t c) {
     char name[32];

@@ -1,6 +1,6 @@
 // What a bake reads: the scene, the walkthrough and their hashes. Under mpirun rank 0 alone reads the
 // files and sends what it read to the other ranks (ranks.h: broadcast), so that other hosts need
-// neither file (issue 28); every rank then builds the same hierarchy from the same bytes. Private to
+// neither file; every rank then builds the same hierarchy from the same bytes. Private to
 // this stage.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The solve's checkpoint on disk (issue 28): DIR/solve.checkpoint, the state after the last complete
+// The solve's checkpoint on disk: DIR/solve.checkpoint, the state after the last complete
 // refinement round (solve_checkpoint.cpp), written by rank 0 under a temporary name and renamed over
 // the last one, so that a bake killed at any moment leaves a whole checkpoint or the one before. It
 // records the build that wrote it, the scene's and the walkthrough's hashes and the settings, and a

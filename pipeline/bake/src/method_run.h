@@ -44,7 +44,7 @@ class Phases {
   void finish() {
     if (name_.empty()) return;
     // Memory at the phase's end: resident, and the process's peak so far (the phase where it jumps
-    // is the one that set it: a large level's baseline against its links, docs/performance.md).
+    // is the one that set it: a large level's baseline against its links).
     phases_.push_back({{"name", name_},
                        {"seconds", std::chrono::duration<double>(Clock::now() - t0_).count()},
                        {"resident_mb", resident_memory_mb()},

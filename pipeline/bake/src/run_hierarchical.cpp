@@ -98,9 +98,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   // Sweeps stop where no leaf moves by more than 1/200 of the error asked for: what is left after
   // them, about the last update × g/(1 − g) for a gain g a sweep (0.85–0.90 in the tail of office-floor
   // 32 rooms' last round: 8 times it, 4% of the error), is far below what the refinement leaves. A
-  // thousandth before 2026-11-28: 32 rooms' last round took 34 sweeps to reach it; the 8-room level
-  // (15 → 11 sweeps) and the 150-room one (14 → 12) measure the same RMS error against their
-  // references at both, to every digit (docs/performance.md, docs/accuracy.md).
+  // thousandth would cost sweeps for nothing: 32 rooms' last round takes 34 sweeps to reach it, and
+  // the 8-room level (11 sweeps against 15) and the 150-room one (12 against 14) measure the same RMS
+  // error against their references at both, to every digit.
   hs.tolerance = std::max({s.tolerance, 1e-6, kSweepShareOfError * s.error});
   hs.gauss_seidel = s.solver == "gauss-seidel";
   hs.visibility = plan.visibility.on;
@@ -148,7 +148,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   auto round_start = t0;
   uint64_t previous_new = 0, previous_rss = resident_memory_mb();
   // The wall time of each round run here (report.json; the rounds a resumed bake read back come first
-  // and have none): the rounds against their rays show where the solve's own work is (docs/performance.md).
+  // and have none): the rounds against their rays show where the solve's own work is.
   std::vector<double> round_seconds;
   auto on_round = [&](const IterationStats& it) {
     const std::string round = std::to_string(stats.iterations.size());
@@ -206,12 +206,12 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   point.position_error = s.position_tolerance;
   // The adaptive output mesh (final_gather.h): gathered leaves split where Gouraud shading would miss
   // a shadow's edge, the worst first, within an eighth as many new leaves as the solution has, at
-  // least 2,048. A 5 cm penumbra went from 13% to 4.2% off, and to 2.4% with 32² points per penumbra
-  // vertex (test ContactShadow). Since the discontinuity cuts put penumbrae's edges on element edges
-  // the floor buys less: 2,048 against 4,096 gave that penumbra 0.96% against 0.88% (lit floor 0.70%),
-  // the Cornell box 0.870% both, lamp-room 1.291% against 1.288%, for 1.41× the chunk bytes of a bake
-  // without the gather instead of 1.63× and 1.73× (issue 23 allows 1.5×; docs/accuracy.md). Half as
-  // many leaves as the solution: office-floor took 84 s of CPU, not 75.
+  // least 2,048. Without it a 5 cm penumbra is 13% off; with it 4.2%, and 2.4% with 32² points per
+  // penumbra vertex (test ContactShadow). As the discontinuity cuts put penumbrae's edges on element
+  // edges, the floor buys little: 2,048 against 4,096 gives that penumbra 0.96% against 0.88% (lit
+  // floor 0.70%), the Cornell box 0.870% both, lamp-room 1.291% against 1.288%, for 1.41× the chunk
+  // bytes of a bake without the gather instead of 1.63× and 1.73× (the gather is allowed 1.5×). Half
+  // as many leaves as the solution costs office-floor 84 s of CPU, not 75.
   DisplayRefinement refinement;
   refinement.seen = hs.gathered;
   refinement.ungathered = !plan.importance.on;  // every surface is what the display shows

@@ -1,37 +1,29 @@
-// Contacts and a hard shadow (issue 23), baked with the default settings and read back from the output
-// as a viewer sees it, against the independent reference tracer (reference_tracer.h): a 4 m room,
-// a 0.3 m light panel 2 mm under its ceiling, a 0.6 m box 2 mm above its floor beside the light.
+// Contacts and a hard shadow, baked with the default settings and read back from the output as a
+// viewer sees it, against the independent reference tracer (reference_tracer.h): a 4 m room, a 0.3 m
+// light panel 2 mm under its ceiling, a 0.6 m box 2 mm above its floor beside the light.
 // - No output triangle straddles either footprint (contact splitting cuts the floor and the ceiling
 //   along them: contact_split.h).
-// - Within 2 cm of each outline (1 cm outside it) the bake agrees with the reference: beside the lamp
-//   on the ceiling within 3% (issue 23's target; measured 1.39% at the medium default, 1.2% at --error
-//   0.1, 2.7% before links took what they see
-//   of their sources, Link::seen); beside the box on the floor, where the box's vertical edges cast
-//   penumbrae into the corners, within issue 23's 3% RMS (measured 2.91% at the medium default, worst
-//   point 5.8%, close to the bound; 1.95% at --error 0.1, worst point +4.7%; 2.39%,
-//   worst +5.1%, before the box faces' parts took their point values over the solved mean instead of
-//   rescaling them to it, at --error 0.2 4.73% → 2.91%; the points in the box's shadow are 0-5%
-//   bright). 4.9% before the box's
-//   faces, as sources, were taken part by part where the floor's leaves are finer (ClusterGather::
-//   resolve_close_sources): a floor point 1 cm away sees mostly their first centimetres, which their
-//   bottom elements averaged with the brighter ones above. 4.5% before the near-contact bands and the
-//   overfilled row's rule, but only because a vertex 0.7 mm from the outline, dark under the box's
-//   edge, was spread over the point's triangle: refined to --error 0.01 it read 7.9% (−14% to +1%),
-//   now 0.84% (the test below); 4.79% before the discontinuity cuts; 8.1% when vertices were read a
-//   thousandth of the way into their faces instead of 5%, 8.4% before Link::seen, 11.7% before
-//   vertices took their own row in a closed scene.
+// - Within 2 cm of each outline (1 cm outside it) the bake agrees with the reference within 3%: on the
+//   ceiling beside the lamp point by point (with the reference's own noise), which needs links to take
+//   what they see of their sources (Link::seen); on the floor beside the box, where the box's vertical
+//   edges cast penumbrae into the corners and the points in the box's shadow are 0-5% bright, as an
+//   RMS, close to the bound at the medium default (worst points about 5%). The floor needs all of:
+//   the box faces' parts taking their point values over the solved mean rather than rescaled to it;
+//   the box's faces, as sources, taken part by part where the floor's leaves are finer
+//   (ClusterGather::resolve_close_sources: a floor point 1 cm away sees mostly their first
+//   centimetres, which their bottom elements average with the brighter ones above); the near-contact
+//   bands and the overfilled row's rule (without them a vertex 0.7 mm from the outline, dark under the
+//   box's edge, is spread over the point's triangle, which the test at --error 0.01 below shows); the
+//   discontinuity cuts; vertices read 5% of the way into their faces (a thousandth puts the floor near
+//   8%); Link::seen; and vertices taking their own row in a closed scene (without it, near 12%).
 // - In the box's penumbra on the floor (5 cm wide, where the lamp is partly hidden) the error is at
-//   most twice the error in the lit floor beyond it (issue 23), or 1% where that is below 0.5%
-//   (measured 0.80% against 0.57% at the medium default, 0.76% against 0.65% at --error 0.1, with
-//   65,536 reference paths a point; 0.96% against 0.70% before a
-//   gathered vertex asked whether it sees a source its link saw in part; 0.88% when the adaptive mesh
-//   had at least 4,096 new leaves, not 2,048; 0.95% before the box's faces
-//   were taken part by part, once the floor is cut along the penumbra's edges (discontinuity_mesh.h) and a vertex's first shadow rays ask the lamp's corners too;
-//   2.17% against 0.70% before; 2.36% against 0.60% before 0e56ab2 (an
-//   overfilled row at a vertex taken from the sources seen in part); 2.23% against 0.83% before
-//   Link::seen). Before the final gather's adaptive mesh ranked its splits, the penumbra was a
-//   14 cm ramp, 13% off (2.7×); before the worst-first queue and 32² points per penumbra vertex, 4.2%
-//   against 1.8%.
+//   most twice the error in the lit floor beyond it, or 1% where that is below 0.5% (with 65,536
+//   reference paths a point). This needs a gathered vertex to ask whether it sees a source its link saw
+//   in part, the floor cut along the penumbra's edges (discontinuity_mesh.h) with a vertex's first
+//   shadow rays asking the lamp's corners too, an overfilled row at a vertex taken from the sources
+//   seen in part, Link::seen, and the final gather's adaptive mesh ranking its splits worst first with
+//   32² points per penumbra vertex (unranked, the penumbra is a 14 cm ramp, 13% off). An adaptive mesh
+//   of at least 4,096 new leaves rather than 2,048 gains little here.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -206,8 +198,8 @@ TEST_F(ContactShadow, AgreesWithTheReferenceBesideEachOutline) {
   for (const bool floor : {true, false}) {
     const std::vector<Vec3> points = floor ? around(kBoxLo[0], kBoxHi[0], kBoxLo[2], kBoxHi[2], 0.0)
                                            : around(2 - kLampHalf, 2 + kLampHalf, 2 - kLampHalf, 2 + kLampHalf, kRoom);
-    // The floor with 65,536 paths a point: its RMS is held to issue 23's 3%, where the reference's own
-    // noise at 16,384 (about 0.3% a point) would count.
+    // The floor with 65,536 paths a point: its RMS is held to 3%, where the reference's own noise at
+    // 16,384 (about 0.3% a point) would count.
     const Compared c = floor ? compare(points, kFloor, 65536) : compare(points, kCeiling);
     double worst = 0;
     for (size_t k = 0; k < points.size(); ++k) {
@@ -226,8 +218,8 @@ TEST_F(ContactShadow, AgreesWithTheReferenceBesideEachOutline) {
 }
 
 // The hard setting beside the default: at --error 0.01 the floor beside the box converges to the
-// reference (measured 0.69% RMS, 0.65% before the parts' point values; before the contact bands and
-// the overfilled row's rule, 7.9%, −14% to +1%: finer, farther).
+// reference (about 0.7% RMS; without the contact bands and the overfilled row's rule it reads about 8%,
+// −14% to +1%: finer, farther).
 TEST_F(ContactShadow, BesideTheBoxConvergesWithTheError) {
   BakeSettings s;
   s.scene = (dir_ / "room.gltf").string();

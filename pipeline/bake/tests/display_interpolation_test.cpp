@@ -2,7 +2,7 @@
 // defaults a user gets: the output mesh is split where Gouraud shading between the vertices' own values
 // would depart from the light (display_refinement.h), and the bake's estimate counts what it leaves.
 // - A 1 m square 1 m under a 1 m square emitter (ρ 0.5), with and without viewpoints: kept as one
-//   element, its corners' light is 31% below the mean ρ F E and 42% below the centre's; now the
+//   element, its corners' light is 31% below the mean ρ F E and 42% below the centre's; split, the
 //   displayed mean is within 1% of ρ F E and the centre within 2% of its point value, and the estimate
 //   is neither 0 nor more than twice the measured error.
 // - A floor lit only by a 1 m² emitter filling a window (every other surface black), two viewpoints on
@@ -132,8 +132,8 @@ TEST(DisplayInterpolation, AWindowLitFloorIsExactWhereTheViewpointsLook) {
               "RMS %.2f%%, estimate %.2f%%\n", counted, points.size(), 100 * worst, at.x, at.z, 100 * rms, 100 * estimate);
   EXPECT_GT(counted, points.size() / 2);
   EXPECT_LT(worst, 0.02);
-  // The estimate knows the interpolation it leaves (it said 0 when the vertices were exact and the
-  // faces between them were not).
+  // The estimate knows the interpolation it leaves (not 0 when the vertices are exact and the faces
+  // between them are not).
   EXPECT_GT(estimate, 0.5 * rms);
   EXPECT_LT(estimate, 2.0 * rms);
 }

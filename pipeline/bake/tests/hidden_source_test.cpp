@@ -4,8 +4,8 @@
 // link takes what its rays see of each part of its source. Baked with the default settings (two
 // viewpoints, the ceiling and the floor) and read back as a viewer sees it, against the independent
 // reference tracer (reference_tracer.h) at 16 ceiling points: within 2% RMS, the reference's own noise
-// included (its standard error 0.57% RMS). Measured 1.13%; 1.67% before a gathered vertex asked
-// again whether it sees a source its link saw in part (point_radiosity.h); 2.18% when links took their
+// included (its standard error 0.57% RMS). About 1.1%; about 1.7% if a gathered vertex did not ask
+// again whether it sees a source its link saw in part (point_radiosity.h), 2.2% if links took their
 // sources' means.
 // With the ceiling's viewpoint alone the floor is refined only as far as the ceiling needs it and the
 // ceiling is about 3.6% off (3.8% with means): the unseen floor's lit part is 1-3% dark (not found yet).

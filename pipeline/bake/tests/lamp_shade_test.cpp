@@ -2,14 +2,14 @@
 // light and a spot, no area emitter), baked with the defaults a user gets and its camera, read back as
 // a viewer sees it against the independent reference tracer (reference_tracer.h) at points on the
 // shade's two faces the camera sees and on the table under it. What the shade shows outside is τ times
-// what lights its inside, a bulb 20 cm away: it varies threefold over a face. Measured 1.54% RMS at the
-// medium default, 1.43% at --error 0.1 (the reference's standard error 1.0%); the table 36-46% dark at
-// medium (17.6%) while the shade's bottom, a close source of the table's points, was read part by part
-// without its twin, and 6.0% while the table stayed one element under the shade's one link. The sweep
-// found the shade 17% off when its inside, seen by no viewpoint, stayed one element a face and the
-// outside's vertices departed from their own mean instead of from the inside's (docs/numerics.md),
-// and the table under the shade 24-29% dark when a
-// point's overfilled row (an occluder and what it hides both counted) was scaled down as a whole.
+// what lights its inside, a bulb 20 cm away: it varies threefold over a face. About 1.5% RMS at the
+// medium default (the reference's standard error 1.0%). The table under the shade needs the shade's
+// bottom, a close source of the table's points, read part by part with its twin (without it, 36-46%
+// dark) and the table split under the shade's link (one element, 6% off). The shade needs its inside,
+// seen by no viewpoint, refined, and the outside's vertices to depart from the inside's mean rather
+// than their own (see docs/numerics.md; otherwise 17% off); the table under the shade needs a
+// point's overfilled row (an occluder and what it hides both counted) not scaled down as a whole
+// (otherwise 24-29% dark).
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -53,10 +53,10 @@ TEST(LampShade, OutsideShowsTheBulbThroughIt) {
 }
 
 // A vertex on a wall's foot lies on the wall's plane: its shadow ray to a punctual light, lifted off
-// the floor alone, left from the wall itself and met it. The floor 1 cm from the wall y = 0 under the
-// spot read 39% dark at x = 3.10 and 16% at x = 1.70, in the pool of light, before the punctual
-// lights' rays left from the gather's origin, moved in (final_gather.cpp): these 12 points 22.6% RMS
-// then, 1.4% now (the reference's own standard error 0.9%).
+// the floor alone, would leave from the wall itself and meet it. The punctual lights' rays leave from
+// the gather's origin, moved in (final_gather.cpp); otherwise the floor 1 cm from the wall y = 0 under
+// the spot reads 39% dark at x = 3.10 and 16% at x = 1.70, in the pool of light (these 12 points
+// 22.6% RMS against about 1.4%; the reference's own standard error 0.9%).
 TEST(LampShade, TheFloorAtAWallsFootIsLitByTheSpot) {
   const test::DefaultBake baked("wall-foot", kLampRoom);
   const Scene& scene = baked.scene;

@@ -2,8 +2,8 @@
 // as a viewer sees it, against the independent reference tracer (reference_tracer.h):
 // - a corridor lit only through a lit room's doorway, its floor one quad of 20 to 160 m: the points
 //   just past the door agree with the reference whatever the length (a few rays from the far end of a
-//   long floor miss a 1 m doorway; such a link is no longer settled dark, and a wall dark but for the
-//   patch the doorway lights is no longer taken at its mean: solver.h, Solver::unresolved, and
+//   long floor miss a 1 m doorway; such a link is not settled dark, and a wall dark but for the
+//   patch the doorway lights is not taken at its mean: solver.h, Solver::unresolved, and
 //   error_estimate.cpp, worth_splitting);
 // - a hall whose one quad of floor is lit through one window;
 // - a room behind a solid wall of no thickness stays exactly dark: every link across it is proven

@@ -17,8 +17,8 @@ size_t whole_pages(size_t bytes) { return (bytes + kHugePageBytes - 1) / kHugePa
 
 // Each page written once, the 2 MiB blocks on all threads: the kernel zeroes a fresh page in the
 // thread that first writes it, and the vector's own fill is one thread (the aggregation correction's
-// arrays, made afresh each round: 3.5 s of one thread in the 150-room level's solve,
-// docs/performance.md). The bytes stay 0, as the mapping gave them.
+// arrays, made afresh each round: 3.5 s of one thread in the 150-room level's solve). The bytes stay
+// 0, as the mapping gave them.
 void first_touch(void* p, size_t size) {
   constexpr size_t kSmallPage = 4096;
   tbb::parallel_for(size_t(0), size / kHugePageBytes, [&](size_t block) {

@@ -46,7 +46,7 @@ GaussRule make_gauss_rule(int order) {
   return r;
 }
 
-// The eight rules, mapped once (the same arithmetic as at every call before: the same bits).
+// The eight rules, mapped once (the same arithmetic as mapping them at every call: the same bits).
 const GaussRule& gauss_rule(int order) {
   static const std::array<GaussRule, 8> rules = [] {
     std::array<GaussRule, 8> r{};
@@ -128,8 +128,7 @@ double point_to_polygon(const Vec3& p, const Vec3& n, const ContourSource& sourc
     }
   }
   if (m < 3) return 0.0;
-  // One edge at a time: two at a time (SSE2) gave the same bits and no speed (docs/performance.md,
-  // "What a link costs besides its rays").
+  // One edge at a time: two at a time (SSE2) gives the same bits and no speed.
   double sum = 0.0;
   for (int k = 0; k < m; ++k) {
     const int j = k + 1 == m ? 0 : k + 1;

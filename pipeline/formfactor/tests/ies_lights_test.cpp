@@ -1,4 +1,4 @@
-// IES luminaires (issue 24; ies.h, punctual_lights.h): a type C profile above a large grey floor,
+// IES luminaires (ies.h, punctual_lights.h): a type C profile above a large grey floor,
 // written as a glTF EXT_lights_ies light and read back, baked by both methods and traced by the
 // reference tracer. The floor sees nothing, so B = ρ · I(γ, C) · cos θ / r² at every point, with
 // I the profile's own interpolation in the light's frame, computed here from the node's known

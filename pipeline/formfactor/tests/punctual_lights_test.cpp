@@ -1,4 +1,4 @@
-// Punctual lights (issue 10, punctual_lights.h): point and spot sources shot straight to elements,
+// Punctual lights (punctual_lights.h): point and spot sources shot straight to elements,
 // against the analytic irradiance I cos θ / r² (times the spot falloff), in the solvers and in a bake.
 #include "walkrad/formfactor/punctual_lights.h"
 

@@ -1,5 +1,5 @@
-// The error a node's links leave in its radiosity, and the tolerance it is held to (docs/numerics.md,
-// "Error control"). Piecewise-constant hierarchical radiosity errs in three ways at a receiver:
+// The error a node's links leave in its radiosity, and the tolerance it is held to (see
+// docs/numerics.md). Piecewise-constant hierarchical radiosity errs in three ways at a receiver:
 // - its transfers fall unevenly on it, but are pushed to its children uniformly: the variation of the
 //   total over its children (Link::share), not of each link alone, so that transfers which sum to a
 //   uniform irradiance (a furnace, a wall beside a floor) are not refined however large they are
@@ -156,7 +156,7 @@ void Solver::measure_variation() {
       // element sources' light is taken at each vertex too (point_radiosity.cpp, LeafRadiosity), so
       // what those leave is the interpolation's departure between vertices, which the display
       // refinement measures and adds (display_refinement.cpp). Counted at the shares as well, the
-      // estimate was twice the measured error on the Cornell box and on corridor levels.
+      // estimate would be twice the measured error on the Cornell box and on corridor levels.
       const bool gather = gathered(uint32_t(i));
       double H = 0, Hc[4] = {}, G = 0, Gc[4] = {}, inner = 0;
       for (const Link& l : n.links) {
@@ -182,9 +182,8 @@ void Solver::measure_variation() {
       // shares flatten (test AWallUnderAGrazingLampKeepsItsProfileAtACoarseError).
       // Σ inner bounds it; where the bound passes the tolerance, the luminaires' irradiance is taken at
       // the centres of the children's quarters, so that transfers which cancel (a furnace's faces)
-      // stay unsplit. Every link's inner variation, not only the emitters', refined the Cornell box to
-      // the error a finer tolerance gives for as many links, and made ContactShadow's floor worse
-      // (docs/accuracy.md, "Why the default is not medium").
+      // stay unsplit. Every link's inner variation, not only the emitters', would refine the Cornell box
+      // no better than a finer tolerance does for as many links, and makes ContactShadow's floor worse.
       const double rho = luminance(n.rho);
       if (!n.cluster && rho * inner > worst && clearly_greater(rho * inner, tolerance(uint32_t(i))))
         worst = std::max(worst, rho * emitted_inner(uint32_t(i)));

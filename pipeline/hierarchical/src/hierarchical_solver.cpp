@@ -46,8 +46,8 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
   stats_.oracle = importance_ ? "importance" : "view-independent";
   if (importance_) {
     // The hits themselves are scaled, not only the nodes' R: an element split later sums its hits'
-    // weights, and took them unscaled (a 1/Σ A share) until 2026-11-27, so that a seen element lost its
-    // direct importance once split (an office room's refined leaves showed 0.03 of their weight).
+    // weights, and unscaled (a 1/Σ A share) they would make a seen element lose its direct importance
+    // once split (an office room's refined leaves would show 0.03 of their weight).
     h_.scale_view_hits(root.area / root.R);
     std::vector<std::pair<double, double>> seen;  // density, area
     double total = 0;

@@ -249,7 +249,7 @@ void Hierarchy::sample(const HNode& n, double u, double v, double w, Vec3& point
   normal = normals_[k];
   // The child holding slot k, from the tree's layout (add_cluster): a leaf cluster's elements are its
   // slots in order, and a tree node's child 0 holds the first half of its slots (build_cluster_tree).
-  // Read from the children's nodes, it was two cache misses a sample.
+  // Read from the children's nodes, it would be two cache misses a sample.
   if (child) *child = t.leaf() ? uint32_t(k - t.first) : uint32_t(k - t.first >= t.count / 2);
 }
 
@@ -281,8 +281,8 @@ void normalize_shares(const Hierarchy& h, uint32_t receiver, std::array<float, 4
   for (uint32_t c = 0; c < count; ++c) share[c] = float(std::max(0.0f, share[c]) * total / weighted);
 }
 
-// docs/performance.md gives the memory per link.
-static_assert(sizeof(Link) == 44, "a link's size changed: update docs/performance.md");
+// A link's size is the solve's memory per link, and the links are most of a large bake's memory.
+static_assert(sizeof(Link) == 44, "a link's size changed");
 
 std::array<uint16_t, 4> seen_weights(const double* visible_kernel, const double* area_share, uint32_t count, double within) {
   std::array<uint16_t, 4> out = {0, 0, 0, 0};

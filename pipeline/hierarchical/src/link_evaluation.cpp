@@ -27,7 +27,7 @@ std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
       n.D_known = true;
       spread[k] = luminance(n.rho) * d.spread;
       // A transmitting element shows τ times what lights its back as well (a bulb inside a shade:
-      // lamp-room's shade outside was left as coarse as its own dim side asked, 17% off).
+      // otherwise lamp-room's shade outside is left as coarse as its own dim side asks, 17% off).
       const Vec3 tau = transmittance(n);
       if (max_component(tau) > 0) {
         Polygon back = n.shape;
@@ -81,13 +81,13 @@ void Solver::add_counts(const LinkCounts& c, IterationStats& is) {
 
 void Solver::store_links(PendingList& list) {
   // The shares scaled to their area mean first, each link on its own (in parallel): 1.2 s of one
-  // thread at 150 rooms, the receivers' quadrants cut again for every link (docs/performance.md).
+  // thread at 150 rooms, the receivers' quadrants cut again for every link.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, list.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end(); ++k)
       if (kept(list[k])) normalize_shares(h_, list[k].receiver, list[k].share);
   });
   // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
-  // up to half of itself unused (docs/performance.md, "Links held at their size"). The kept links
+  // up to half of itself unused. The kept links
   // sorted by receiver first (a counting sort, in list order), so that the receivers fill their
   // lists on all threads, each in list order as one thread filled them.
   const size_t nodes = h_.nodes().size();
@@ -397,7 +397,7 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   const double occluded = (weighted - open) / N;
   // Every ray blocked, F is 0 and the unoccluded factor only scales σ (what the rays could have
   // missed): the samples' mean serves, not the exact sum over up to 64 polygon pairs (44% of the
-  // exact sums on office-floor's 32 rooms, their pairs 45%: docs/performance.md).
+  // exact sums on office-floor's 32 rooms, their pairs 45%).
   const bool all_blocked = !segments.empty() && open == 0;
   const bool exact = !all_blocked && polygon_pairs(ri, sj) <= kExactClusterPairs;
   const double unoccluded = exact ? exact_unoccluded(ri, sj) : mc / N;

@@ -88,7 +88,7 @@ void delivered(const Hierarchy& h, V value, Delivery<N>& d) {
   d.H.assign(nodes.size(), std::array<Vec3, N>{});
   d.row.assign(nodes.size(), 0.0);
   // Each element root takes what the clusters above it deliver to its normal (a cube kept for every
-  // cluster was one more array of fresh pages each call: docs/performance.md).
+  // cluster would be one more array of fresh pages each call).
   gather_down_clusters<N>(
       h, [&](const Link& l, const HNode& n) { return has_seen(l) ? seen_value<N>(h, l, n, value) : value(l.source, n); },
       [&](uint32_t root, const std::array<DirectionalIrradiance, N>& cubes) {
@@ -178,7 +178,7 @@ struct TransportBuffers {
 
 // T x for N vectors x at once, x(leaf) the N values at a leaf element (zero elsewhere). Returns the
 // delivery: leaf_irradiance(leaf, H[k][m], row[k]) is (T x_m) at leaf k. Only the node-sized arrays
-// the walk needs are held (each fresh page a fault: docs/performance.md).
+// the walk needs are held (each fresh page a fault).
 template <size_t N, class X>
 const Delivery<N>& transport(const Hierarchy& h, X x, TransportBuffers<N>& t) {
   const HNodes& nodes = h.nodes();

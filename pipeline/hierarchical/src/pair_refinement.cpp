@@ -182,7 +182,7 @@ void Solver::refine_pairs(std::vector<PairTask> tasks) {
       for (size_t k = r.begin(); k != r.end(); ++k) decided[k] = decide_pair(tasks[k]);
     });
     // The next level's pairs, made to their count (at most: an element splits into 4): a list grown by
-    // doubling is copied and faulted in about twice over (docs/performance.md).
+    // doubling is copied and faulted in about twice over.
     size_t more = 0;
     for (size_t k = 0; k < tasks.size(); ++k) {
       const PairOutcome& d = decided[k];

@@ -41,9 +41,8 @@ bool by_parts(const HNode& s, const Vec3& x) { return s.child_count == 4 && with
 
 // A leaf element source is resolved into parts for a seen leaf at most this fraction of its size (its
 // points see parts of it: test ContactShadow's floor beside the box, 1.6 cm leaves, and the box's
-// 7.5 cm faces). Beside the box 0.3, 0.5, 1 and any size gave the same error; on the Cornell box 0.5
-// resolves 329 sources, 1 resolves 1,622 (0.26 s against 0.61 s, before the marking pass kept its
-// stack; 0.13 s at 0.5 since).
+// 7.5 cm faces). Beside the box 0.3, 0.5, 1 and any size give the same error; on the Cornell box 0.5
+// resolves 329 sources, 1 resolves 1,622 (over twice the time).
 constexpr double kFinerReceiver = 0.5;
 
 }  // namespace
@@ -278,9 +277,9 @@ void LeafRadiosity::near_parts(uint32_t node, const Vec3& x, const Vec3& normal,
 }
 
 // Whether a gathered point sees a source its link saw in part: one ray to the source's centre. The
-// link's visible fraction is its leaf's mean; beside an occluder the point's own view differs (the
-// Cornell box's floor 1-3 cm in front of the short block, in its shadow, was 25-60% bright: the walls
-// the block hides there were taken at the leaf's visibility). One ray against four to the source's
+// link's visible fraction is its leaf's mean; beside an occluder the point's own view differs (taken
+// at the leaf's visibility, the walls the short block hides make the Cornell box's floor 1-3 cm in
+// front of the block, in its shadow, 25-60% bright). One ray against four to the source's
 // quadrants: the Cornell box 0.744% against 0.714% weighted RMS, for 1.08x and 1.31x its CPU.
 double LeafRadiosity::visible_at(const Near& s, const Vec3& x) const {
   const RayScene* rays = clusters_.rays();

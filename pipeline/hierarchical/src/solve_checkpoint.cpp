@@ -1,5 +1,5 @@
-// The solve's state between two refinement rounds, to bytes and back (issue 28: a bake of hours
-// resumes from its last complete round). Everything a round changes is saved: the hierarchy (nodes,
+// The solve's state between two refinement rounds, to bytes and back, so that a bake of hours
+// resumes from its last complete round. Everything a round changes is saved: the hierarchy (nodes,
 // links, children, view hits), the solver's per-node measures and the statistics so far. What the
 // constructor derives from the scene alone is rebuilt by it, identically, and not saved. A link's
 // random numbers are seeded by its two nodes, so the rounds after a resume draw what they would have.

@@ -32,7 +32,7 @@ struct LinkRequest {
   int32_t samples;
   bool need_rays, volume;
 };
-static_assert(sizeof(LinkRequest) == 16, "LinkRequest's size changed: update docs/performance.md");
+static_assert(sizeof(LinkRequest) == 16, "LinkRequest's size changed");
 
 // A link found by the refinement, waiting for its form factor (evaluated in parallel).
 // 64 bytes: a round's list is held beside every link while it is evaluated (80 with 64-bit counts;
@@ -53,9 +53,9 @@ struct Pending {
   explicit Pending(const LinkRequest& r)
       : receiver(r.receiver), source(r.source), samples(r.samples), need_rays(r.need_rays), volume(r.volume) {}
 };
-static_assert(sizeof(Pending) == 64, "Pending's size changed: update docs/performance.md");
-// A round's list, made afresh each round: on huge pages (core/huge_pages.h; 0.25 M of the 150-room
-// level's page faults were this list's).
+static_assert(sizeof(Pending) == 64, "Pending's size changed");
+// A round's list, made afresh each round: on huge pages (core/huge_pages.h; on small pages, 0.25 M of
+// the 150-room level's page faults are this list's).
 using PendingList = HugeVector<Pending>;
 
 // A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
@@ -83,10 +83,10 @@ class Solver {
   // Clusters that hold a transmitting polygon or its twin (transmission.h). A cluster link sends the
   // area mean of its surfaces' radiosity and pushes what it receives evenly onto them, but the two
   // sides of a lampshade see different worlds: the bright inside, hidden from the room, and the room.
-  // With the twins in a cluster, the lit outside of a shade gathered a row sum of 0.24, and a closed
-  // room lost light (the transmission test's room absorbed 0.9958 of the emitted power; 1.000000 now;
-  // the lamp room, whose leak lies elsewhere, absorbs 0.9965 without this and 0.9957 with it: see
-  // docs/numerics.md). Links never end at such a cluster: they go down to the transmitting polygons'
+  // With the twins in a cluster, the lit outside of a shade would gather a row sum of 0.24, and a closed
+  // room would lose light (the transmission test's room absorbs 0.9958 of the emitted power that way,
+  // 1.000000 with these clusters marked; the lamp room, whose leak lies elsewhere, absorbs 0.9965
+  // without this and 0.9957 with it: see docs/numerics.md). Links never end at such a cluster: they go down to the transmitting polygons'
   // own elements (a lampshade's few polygons; many transmitting polygons make many links).
   void mark_two_sided_clusters();
   bool two_sided(uint32_t i) const { return i < two_sided_.size() && two_sided_[i]; }

@@ -19,9 +19,9 @@ namespace {
 
 // Two closed rooms back to back, a wall 0.1 m thick between them, a lamp under the lit room's ceiling.
 // Every link across the wall is proven hidden (the wall's face covers the shaft) and dropped: none is
-// kept, refined or sent down to the children of a lit element that splits for the lamp's sake (before
-// proofs, such links were cast again and split: each level cast 4 times the rays to find nothing;
-// office-floor's 16 rooms held 3.2 M of them, 123 M of its 882 M rays).
+// kept, refined or sent down to the children of a lit element that splits for the lamp's sake (without
+// proofs, such links are cast again and split: each level casts 4 times the rays to find nothing;
+// office-floor's 16 rooms would hold 3.2 M of them, 123 M of its 882 M rays).
 Scene two_rooms() {
   Scene s = test::closed_box(4.0, {0.6, 0.6, 0.6}, {0, 0, 0});
   const size_t lit_faces = s.polygons.size();

@@ -158,8 +158,8 @@ TEST(Hierarchical, AWallUnderAGrazingLampKeepsItsProfileAtACoarseError) {
   s.polygons.push_back(lamp);
   const ClusterTree tree = build_cluster_tree(s);
   const RayScene rays(s);
-  // The default a user gets (0.0441 against 0.0625) and medium, the setting that flattened the walls
-  // before Link::inner (0.0442 against 0.0628).
+  // The default a user gets (0.0441 against 0.0625) and medium, the setting at which the walls
+  // flatten without Link::inner (0.0442 against 0.0628).
   for (const double error : {HierarchicalSettings{}.error, 0.2}) {
     Hierarchy h(s, tree);
     HierarchicalSettings settings;
@@ -225,7 +225,7 @@ TEST(Hierarchical, TheFacesOfAConvexObjectAreNotLinked) {
 
 // A cluster sends by direction what its surfaces facing that way send (cluster_radiosity.h): a cube
 // whose +x face alone is bright sends its radiosity towards +x, nothing towards −x, half of it along
-// the diagonal between +x and +y; its area mean (a sixth) was what every direction got.
+// the diagonal between +x and +y; its area mean would give every direction a sixth.
 TEST(ClusterRadiosity, ACubeSendsWhatItsFacingSurfacesSend) {
   Scene scene;
   scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
@@ -294,7 +294,8 @@ TEST(Hierarchical, ImportanceKeepsItsUnitWhenElementsSplit) {
 }
 
 // A closed scene's rows are scaled to 1, except the leaves the solver marks (those under a close
-// cluster pair left whole, whose bounded kernel is low: scaled up, they made light; docs/numerics.md).
+// cluster pair left whole, whose bounded kernel is low: scaled up, they would make light; see
+// docs/numerics.md).
 TEST(ClosedRows, MarkedLeavesKeepTheirRawRow) {
   SolvedCornell solved;
   Hierarchy& h = solved.h;
@@ -368,7 +369,7 @@ TEST_F(CornellHierarchical, AgreesWithTheClassicMethod) {
   EXPECT_LT(test::relative_rms(img, ref, 20.0), 0.05);  // emitters (B ≈ 40) left out
 }
 
-// Both methods' output is watertight: no vertex inside any triangle's edge (no cracks, issue 5).
+// Both methods' output is watertight: no vertex inside any triangle's edge (no cracks).
 TEST_F(CornellHierarchical, OutputHasNoTJunctions) {
   for (const char* name : {"classic", "hier"}) {
     bake(settings(name, name == std::string("hier") ? "hierarchical" : "classic"));

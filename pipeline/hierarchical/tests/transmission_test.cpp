@@ -1,4 +1,4 @@
-// Diffuse transmission (issue 10, transmission.h): a lampshade around a light passes light to the
+// Diffuse transmission (transmission.h): a lampshade around a light passes light to the
 // ceiling when it transmits, and none when it is opaque; glTF's KHR_materials_diffuse_transmission
 // round-trips; ρ + τ > 1 is refused.
 #include "walkrad/hierarchical/transmission.h"
@@ -92,9 +92,9 @@ TEST_F(Transmission, LampshadeLightsTheCeilingOnlyWhenItTransmits) {
   // received over the same region (transmission.h; measured 2.8e-9).
   EXPECT_LE(lit["energy_audit"]["imbalance"].get<double>(), 1e-4);
   // And nothing escapes a closed room balanced (--effect closure=on): the room and the shade's two
-  // sides absorb what the bulb emits. Clusters holding the shade's twins gathered light the twins
-  // cannot see and sent the hidden inside's radiosity out: absorbed 0.9958 of emitted before links
-  // stopped ending at them. Unbalanced (the default), the rows' shortfall is lost: 1.08% at the
+  // sides absorb what the bulb emits. Links do not end at clusters holding the shade's twins: such a
+  // cluster would gather light the twins cannot see and send the hidden inside's radiosity out (0.9958
+  // of what is emitted absorbed). Unbalanced (the default), the rows' shortfall is lost: 1.08% at the
   // default error (0.2), 0.99% at 0.1 and at 0.15; held within 1.5%.
   const nlohmann::json balanced = bake_room(lamp_room(0.5), "balanced", lit_max, lit_mean, {{"closure", "on"}});
   EXPECT_TRUE(balanced["effects"]["closure"]["on"].get<bool>());

@@ -81,9 +81,9 @@ std::vector<std::vector<float>> chunk_importance(const std::vector<Viewpoint>& v
   if (views.empty()) return importance;
   // Every viewpoint (no subset), each on its own, its hits kept as (chunk, weight) in a list per
   // thread that is reused from view to view: listed afresh for a batch of 16 views (cast_view_rays,
-  // 48 B × grid² a view), their fresh pages were most of this phase on office-floor's 8 rooms
-  // (docs/performance.md). A hit's weight is still its share of its view over the size of its batch
-  // of 16, as it was: the same bits.
+  // 48 B × grid² a view), their fresh pages would be most of this phase on office-floor's 8 rooms. A
+  // hit's weight is its share of its view over the size of its batch of 16, as cast_view_rays gives
+  // it: the same bits.
   constexpr size_t kBatch = 16;
   const size_t V = views.size();
   std::vector<double> sum(V * chunks, 0.0);  // by view, then chunk

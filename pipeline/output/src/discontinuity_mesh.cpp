@@ -190,8 +190,8 @@ CutFaces cut_faces(const MeshFaces& faces, const std::vector<std::vector<Boundar
     for (const Loop& l : loops) emit_loop(l, face.shape, pieces[f]);
   });
   // Each face's pieces where a prefix sum of their counts puts them: the arrays made to their sizes
-  // and filled in parallel (pushed back one by one, a large level's array of faces was copied and faulted
-  // in twice over: docs/performance.md).
+  // and filled in parallel (pushed back one by one, a large level's array of faces is copied and faulted
+  // in twice over).
   std::vector<size_t> begin(faces.size() + 1, 0);
   for (size_t f = 0; f < faces.size(); ++f) begin[f + 1] = begin[f] + std::max<size_t>(pieces[f].size(), 1);
   out.faces.resize(begin.back());

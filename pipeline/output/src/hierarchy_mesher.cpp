@@ -23,7 +23,7 @@ constexpr uint32_t kNoEmitter = UINT32_MAX;  // a cut that no emitter draws (a c
 
 SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolution& point) {
   // The leaves, made to their count (a large level's array of faces grown by doubling is copied and
-  // faulted in twice over: docs/performance.md).
+  // faulted in twice over).
   std::vector<uint32_t> leaf;
   for (uint32_t i = 0; i < h.nodes().size(); ++i)
     if (!h[i].cluster && !h[i].child_count) leaf.push_back(i);

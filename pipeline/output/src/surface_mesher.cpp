@@ -29,11 +29,12 @@ namespace {
 
 // How far in from a vertex, as a share of the way to each face's centre, the solution is read for it.
 // A vertex on a contact's outline (a box 2 mm above a floor) sees the box's dark underside over half
-// its hemisphere, and Gouraud shading carried that darkness 1-2 cm out: read a thousandth of the way
-// in, the floor 1 cm outside such a box was 8.1% RMS off (test ContactShadow); 2, 3, 5, 10 and 20%
-// gave 4.4, 4.3, 4.8, 6.1 and 7.8%. Inside a smooth region the faces around a vertex read it from
-// all sides and the shifts cancel to first order: at 5% the Cornell box 0.909 -> 0.904% weighted RMS,
-// office-floor's 8 rooms 2.771 -> 2.752%, lamp-room 1.289 -> 1.287% (docs/accuracy.md).
+// its hemisphere, and Gouraud shading carries that darkness 1-2 cm out: read a thousandth of the way
+// in, the floor 1 cm outside such a box is 8.1% RMS off (test ContactShadow); 2, 3, 5, 10 and 20%
+// give 4.4, 4.3, 4.8, 6.1 and 7.8%. Inside a smooth region the faces around a vertex read it from
+// all sides and the shifts cancel to first order: at 5% against a thousandth, the Cornell box 0.904
+// against 0.909% weighted RMS, office-floor's 8 rooms 2.752 against 2.771%, lamp-room 1.287 against
+// 1.289%.
 constexpr double kInward = 0.05;
 
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
@@ -92,8 +93,8 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
         const double len2 = dot(d, d), len = std::sqrt(len2);
         // A point within weld_tol of the edge lies within weld_tol + half a step of a step's point on
         // each axis: in steps of at most half a cell that box spans at most two cells an axis (eight
-        // keys, most often one to four), where the 27 cells around each cell-long step were read
-        // before (the same points found; the 150-room level's mesh phase 52.5 -> 44-46 s).
+        // keys, most often one to four), where reading the 27 cells around each cell-long step finds
+        // the same points more slowly (the 150-room level's mesh phase 44-46 s against 52.5 s).
         const int steps = std::max(1, int(std::ceil(2 * len / cell)));
         const Vec3 reach = Vec3(1, 1, 1) * (weld_tol + 0.5 * len / steps);
         keys.clear();
@@ -166,9 +167,10 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
   // A gathered vertex is read once, by the first face that has it, kInward of the way towards its
   // faces' mean centre (off a crease's neighbouring plane; on the vertex where faces surround it):
   // there every element source is taken at the point (point_radiosity.h), so its faces' readings
-  // differ only by their leaves' coarser parts, and each reading costs a whole evaluation. The Cornell box (medium):
-  // mesh phase 1.20 -> 0.79 s, 1.031 -> 1.033% weighted RMS; lamp-room 1.253 -> 1.252%; test
-  // ContactShadow's floor beside the box 2.49 -> 2.23% (docs/performance.md).
+  // differ only by their leaves' coarser parts, and each reading costs a whole evaluation. One reading
+  // against one a face, the Cornell box (medium): mesh phase 0.79 s against 1.20 s, 1.033 against
+  // 1.031% weighted RMS; lamp-room 1.252 against 1.253%; test ContactShadow's floor beside the box
+  // 2.23 against 2.49%.
   // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
   // A group's faces on either side of a wall standing on them take a vertex each (vertex_sides.h).
   GrowingHugeVector<uint32_t> slot_point, slot_group, slot_next;  // grown: pages as they are used

@@ -257,8 +257,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples, &back_share, tree);
   // Closed, the leaves' row and column sums could be balanced to 1 (link_transport.h). Off unless asked
   // for: with clusters pushing by direction and links by their shares, the row sums stay near 1, and
-  // the balance, its factors bounded, no longer converged on office-floor, made it less accurate
-  // (weighted RMS 7.3% against 5.9%) and took a third of the solve (docs/numerics.md).
+  // the balance, its factors bounded, does not converge on office-floor, makes it less accurate
+  // (weighted RMS 7.3% against 5.9%) and takes a third of the solve (see docs/numerics.md).
   plan.closure.on = false;
   plan.closed = closed;
   const std::string pressed_note =

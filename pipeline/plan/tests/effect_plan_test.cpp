@@ -1,4 +1,4 @@
-// The effect plan (issue 10): what a scene does not call for is not simulated, the result is the same
+// The effect plan: what a scene does not call for is not simulated, the result is the same
 // as with the effect forced on, and the work counters prove what ran.
 #include "walkrad/plan/effect_plan.h"
 
@@ -260,7 +260,7 @@ double balance(const nlohmann::json& report) {
 // through its links, so the power balance closes. By default only each leaf's row sum is scaled to 1:
 // the box's lamp (ρ = 0) shows nothing it receives, so its links from the walls are never refined and
 // take the walls' mean radiosity; its absorption, hence the balance, is off by a few percent
-// (docs/numerics.md, "Closed scenes").
+// (see docs/numerics.md).
 TEST_F(EffectPlanBake, ClosedSceneKeepsItsPowerWhenBalanced) {
   const nlohmann::json planned = bake_scene(box_with_block(), "closed", "hierarchical");
   const nlohmann::json on = bake_scene(box_with_block(), "balanced", "hierarchical", {{"closure", "on"}});

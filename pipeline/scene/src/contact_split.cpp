@@ -65,8 +65,8 @@ void contact_cuts(const Polygon& q, const Vec3& qn, const Polygon& p, double tol
 // Whether a piece is enclosed by what stands on it: some polygon stands along one of its edges with
 // its back to the piece, and none along any of its edges faces it (the floor under a box that has no
 // bottom face, a shelf board under a book). Its corners are dark; the lit piece beside it must not
-// average them in (office-floor: a sample point 5 mm in front of a row of books was 43% too dark, the
-// outline's vertices taking the larger piece under the books).
+// average them in (office-floor: otherwise a sample point 5 mm in front of a row of books is 43% too
+// dark, the outline's vertices taking the larger piece under the books).
 bool enclosed(const Loop& l, const Vec3& centre, const std::vector<Standing>& standing, double tol) {
   bool behind = false;
   for (const Standing& s : standing) {

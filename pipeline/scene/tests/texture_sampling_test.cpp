@@ -1,4 +1,4 @@
-// Textured reflectance per element (issue 10, texture_sampling.h): elements take the texture's mean over
+// Textured reflectance per element (texture_sampling.h): elements take the texture's mean over
 // their own area, the material keeps its average, and the effect plan samples only when there are
 // textured surfaces with texture coordinates.
 #include "walkrad/scene/texture_sampling.h"

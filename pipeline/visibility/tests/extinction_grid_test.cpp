@@ -1,4 +1,4 @@
-// Volume clusters and their extinction grid (issue 7): κ = A/4V read back from the written .vdb,
+// Volume clusters and their extinction grid: κ = A/4V read back from the written .vdb,
 // OpenVDB's own vdb_print opens the file, transmittance through a homogeneous box is exp(−κ s).
 #include <cmath>
 #include <cstdio>

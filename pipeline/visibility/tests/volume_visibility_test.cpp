@@ -1,4 +1,4 @@
-// Volumetric visibility in bakes (issue 7): on a small dense hedge (examples/dense-hedge, 1,000 cubes),
+// Volumetric visibility in bakes: on a small dense hedge (examples/dense-hedge, 1,000 cubes),
 // the wall behind it agrees with exact rays within 10% (RMS, as the walkthrough sees it) for 5× fewer
 // rays; extinction.vdb is written, reused by a rebake of the same geometry, identical with 1 and 2
 // threads; the effect plan turns volumes off where there are none.

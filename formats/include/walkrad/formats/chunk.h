@@ -1,7 +1,7 @@
 // ChunkMesh: one streamable piece of a bake as plain arrays, the contract between the pipeline's
 // mesher (writes it) and the runtime (reads it). On disk it is a .glb with POSITION, NORMAL,
 // COLOR_0 (linear display colour after exposure, clamped to [0, 1]) and _RADIOSITY (physical B, W/m²), an unlit
-// material (KHR_materials_unlit) — see docs/architecture.md, "On disk".
+// material (KHR_materials_unlit) — see docs/architecture.md.
 #pragma once
 
 #include <cstdint>

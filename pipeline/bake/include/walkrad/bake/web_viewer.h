@@ -1,4 +1,4 @@
-// The web viewer (web/, issue 25) put beside a bake: `walkrad web BAKE` and `walkrad bake --web` copy
+// The web viewer (web/) put beside a bake: `walkrad web BAKE` and `walkrad bake --web` copy
 // the built viewer (index.html, walkrad-viewer.js with three.js bundled, draco/) into the bake folder,
 // so that any static HTTP server shows it (`python3 -m http.server` in the folder, then
 // http://localhost:8000/). The viewer reads ./manifest.json and streams the chunks beside it.

@@ -2,7 +2,7 @@
 // row sums) on transparent huge pages. A block of 2 MiB or more is mapped on its own, aligned to
 // 2 MiB and advised madvise(MADV_HUGEPAGE): its first write faults once per 2 MiB, not once per
 // 4 KiB page (on the project's machine a fresh 4 KiB page costs 11.6 µs, 68 times its writes:
-// bench/page_fault_bench.cpp, docs/performance.md). Smaller blocks come from operator new. Where the
+// bench/page_fault_bench.cpp). Smaller blocks come from operator new. Where the
 // kernel gives no huge pages (transparent_hugepage "never", or not Linux) the advice does nothing and
 // the pages are ordinary ones. The contents are what std::vector makes them: no bits change.
 #pragma once

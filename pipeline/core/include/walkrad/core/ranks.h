@@ -1,7 +1,7 @@
-// The ranks of a bake run under mpirun (issue 28): Open MPI's MPI_COMM_WORLD, or one rank without it.
+// The ranks of a bake run under mpirun: Open MPI's MPI_COMM_WORLD, or one rank without it.
 // Without mpirun MPI is never started, and everything runs as one process does.
 //
-// What is divided so far: the evaluation of each refinement round's new links (link_evaluation.cpp)
+// What is divided: the evaluation of each refinement round's new links (link_evaluation.cpp)
 // and of the output vertices' radiosity (surface_mesher.cpp), by contiguous blocks of about equal cost
 // in their own order, each rank's results gathered by every rank (MPI_Allgatherv). Each result depends
 // only on its own inputs (a link's random numbers are seeded by its two nodes, a vertex's by its

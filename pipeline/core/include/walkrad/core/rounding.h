@@ -2,7 +2,7 @@
 // carry rounding of about m × 2⁻⁵³ from every operation on them (a contact cut, a bilinear split), so
 // geometric tests ("on this plane?", "touching this box?") need a slack that grows with m as well as
 // one relative to the objects' own size. 256 ulps: far above what a few operations accumulate, and
-// still 1e-8 m at 1e5 m from the origin (docs/numerics.md, "Scale and position").
+// still 1e-8 m at 1e5 m from the origin (see docs/numerics.md).
 #pragma once
 
 #include <algorithm>

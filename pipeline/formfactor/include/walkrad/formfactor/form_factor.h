@@ -32,8 +32,8 @@ double point_to_polygon(const Vec3& p, const Vec3& n, const ContourSource& sourc
 // The angle between two vectors a and b from s = |a × b| >= 0 and c = a·b: atan2(s, c) in [0, π], by the
 // rational approximation of Cephes' atan (S. L. Moshier, "Methods and Programs for Mathematical
 // Functions", 1989) after reduction to |t| <= 0.66, within 2.2e-16 relative of atan2, one division.
-// libm's atan2 rounds correctly and saves and restores the rounding mode on every call: it was a sixth
-// of a bake's time (the contour formula runs millions of times at the gathered vertices).
+// libm's atan2 rounds correctly and saves and restores the rounding mode on every call: it would be a
+// sixth of a bake's time (the contour formula runs millions of times at the gathered vertices).
 double vector_angle(double s, double c);
 
 // Clips a polygon of at most 4 corners to the half-space dot(x - p, n) >= 0: its corners (possibly

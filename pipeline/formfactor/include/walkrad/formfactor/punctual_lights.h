@@ -1,4 +1,4 @@
-// Direct light from punctual lights (glTF KHR_lights_punctual, issue 10; IES luminaires, issue 24). A
+// Direct light from punctual lights (glTF KHR_lights_punctual) and IES luminaires (EXT_lights_ies). A
 // point, spot or luminaire is no surface, so no link can reach it: its irradiance is shot straight to
 // the elements,
 //   E(x) = I · max(0, n·ω) / r² · D(−ω) · window(r) · V(x, p),   ω = (p − x) / r,

@@ -2,8 +2,8 @@
 // algorithm for radiance calculation in general environments", EGWR 1995). A cluster link's form factor
 // counts only the surfaces that face the receiver (each sample's own cosine), so the radiosity it
 // carries is theirs, weighed by the area each presents: Σ A_k max(0, n_k·u) B_k / Σ A_k max(0, n_k·u),
-// not the cluster's area mean: a desk under a lamp shade, facing its white lining, was lit by the lining
-// averaged with the shade's dark outside (MGF office3, 20-27% dark: docs/accuracy.md). The six axis
+// not the cluster's area mean: by the area mean, a desk under a lamp shade, facing its white lining, is
+// lit by the lining averaged with the shade's dark outside (MGF office3: 20-27% dark). The six axis
 // ways bound the cost: Σ A_k max(0, ±n_k·e_a) B_k per cluster, each way weighed by max(0, ±u_a) (as
 // HNode::facing holds the areas alone).
 #pragma once

@@ -26,7 +26,7 @@ namespace walkrad {
 
 // The interpolation error allowed, as a share of the solution's tolerance: an eighth. The 1 m square
 // under the 1 m emitter at the default error: a quarter stops at 4 × 4 leaves, whose Gouraud mean is
-// 1.9% below the true mean; an eighth at 8 × 8, 0.5% below (docs/accuracy.md).
+// 1.9% below the true mean; an eighth at 8 × 8, 0.5% below.
 constexpr double kInterpolationShare = 0.125;
 
 struct DisplayRefinement {

@@ -53,14 +53,14 @@ struct HierarchicalSettings {
   double tolerance = 1e-5;    // stop: largest relative change of a leaf's B between sweeps, × its display weight
   int max_iterations = 64;    // refine + solve rounds
   // Gather/push-pull sweeps per round but the last (which sweeps to the tolerance). They only steer the
-  // next refinement: 2 instead of 4 took the 150-room level from 180.5 to 162.9 s, with every scene of
-  // docs/accuracy.md's table within its noise (visited rooms 3.15 → 3.10%, office-floor 8 rooms 2.03 →
-  // 2.08%, the hospital 5.07 → 4.79%).
+  // next refinement: with 2 rather than 4 the 150-room level takes 162.9 s against 180.5 s, and every
+  // accuracy scene's error stays within its noise (4 → 2: visited rooms 3.15 → 3.10%, office-floor
+  // 8 rooms 2.03 → 2.08%, the hospital 5.07 → 4.79%).
   int sweeps = 2;
   // A pair about to be split whose parent pair's candidate list holds more entries than this is first
   // probed with `rays` rays, and linked instead where all are blocked (pair_refinement.cpp). 4,096
-  // probes pairs rooms apart: the 150-room level's 839 pairs (512 hidden), its solve 176 → 124 s at the
-  // same error (docs/performance.md).
+  // probes pairs rooms apart: the 150-room level's 839 pairs (512 hidden), its solve 124 s against
+  // 176 s unprobed, at the same error.
   size_t probe_entries = 4096;
   bool gauss_seidel = true;   // gather each polygon's quadtree with this sweep's values (else Jacobi)
   // Gauss-Seidel: runs of polygons and clusters none of which reads what another's push changes
@@ -71,7 +71,7 @@ struct HierarchicalSettings {
   // (hierarchical_solver.cpp), over-relax each leaf's gathered irradiance, H ← H_before + ω (H_gathered
   // − H_before) (successive over-relaxation; Cohen & Wallace 1993, ch. 5), the aggregation correction
   // having taken the overall mode: office-floor's last round 20 → 14 sweeps at 32 rooms, 12 → 10 at
-  // 150 and 11 → 9 at 8 (docs/performance.md). 1: plain.
+  // 150 and 11 → 9 at 8 (plain → over-relaxed). 1: plain.
   double relaxation = 1.4;
   bool visibility = true;     // false: no occlusion possible (effect plan): no shafts' rays
   bool indirect = true;       // false: gather only the sources' emission (direct light, one bounce)

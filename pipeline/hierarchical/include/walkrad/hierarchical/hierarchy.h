@@ -46,7 +46,7 @@ struct Link {
   // source's children (an element's quadrants in split_element order, a cluster's children; at most
   // 4), from the visible kernel of the link's rays, in 65535ths of the largest. All 0: the source's
   // area mean. The parts a receiver cannot see are mostly the parts in shadow, so the mean sends too
-  // little (office-floor's ceilings were 5.5% too dark, fed by floors half under desks).
+  // little (by it, office-floor's ceilings are 5.5% too dark, fed by floors half under desks).
   std::array<uint16_t, 4> seen = {0, 0, 0, 0};
 };
 
@@ -54,8 +54,8 @@ inline bool has_seen(const Link& l) { return (l.seen[0] | l.seen[1] | l.seen[2] 
 
 // Whether a link carries anything. At F = 0 (every ray blocked, or its estimate clamped at 0) it is kept
 // for its σ, which the refinement and the error estimate read; the passes that add F × what its source
-// sends pass over it without reading the source (office-floor's 8 rooms: 40% of the links;
-// docs/performance.md). Passing over it keeps the bits: each term it would add is a zero.
+// sends pass over it without reading the source (office-floor's 8 rooms: 40% of the links).
+// Passing over it keeps the bits: each term it would add is a zero.
 inline bool carries(const Link& l) { return l.F != 0; }
 
 // A node's values: everything but its links, plain data (a checkpoint copies it whole). What a sweep

@@ -2,8 +2,8 @@
 // from its children (bottom up) or from its parent (top down) by the same arithmetic in the same
 // order whichever thread takes it; only the order between independent subtrees changes. The input
 // polygons' element trees are independent of one another; a cluster's subtrees go to other threads
-// where it holds kParallelPolygons input polygons or more. (The aggregation correction's serial
-// passes over the 150-room level's nodes took 2 s a call, 16 calls a solve: docs/performance.md.)
+// where it holds kParallelPolygons input polygons or more. (Serial, the aggregation correction's
+// passes over the 150-room level's nodes take 2 s a call, 16 calls a solve.)
 #pragma once
 
 #include <cstdint>

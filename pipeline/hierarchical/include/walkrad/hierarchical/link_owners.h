@@ -1,4 +1,4 @@
-// Links divided among ranks (issue 28, docs/scaling.md): under mpirun, with Jacobi sweeps, the links
+// Links divided among ranks (see docs/scaling.md): under mpirun, with Jacobi sweeps, the links
 // whose receiver is an element of input polygon p live only on rank owner(p); cluster receivers'
 // links, a few per cent of them, live on every rank. Everything else (the nodes, their radiosity and
 // importance, the scene) is on every rank. A step that reads links runs on the rank that holds them

@@ -1,5 +1,5 @@
 // The transport operator that a hierarchy's links define between its leaves, applied outside the
-// solver's sweeps, and the two corrections built on it (issue 9):
+// solver's sweeps, and the two corrections built on it:
 //
 //   T x at leaf i:  a_i Σ_{links (p ← q), p = i or an ancestor} F_pq · x̄_q,   x̄_q = area mean of s·x over q's leaves
 //
@@ -27,7 +27,7 @@ namespace walkrad {
 // A leaf's row sum well above 1 means it receives more than any enclosure could send it (coincident
 // surfaces in the input): its irradiance is scaled back to a row sum of 1. See Solver::gather (src/solver.h).
 // Balanced leaves are exempt: their factors make a Σ F s exactly 1, whatever a Σ F is (a receive
-// factor of 2.6 against sources sending 0.38 was clamped as coincident and lost that light).
+// factor of 2.6 against sources sending 0.38 would be clamped as coincident and lose that light).
 constexpr double kMaxRowSum = 1.5;
 
 inline bool is_leaf_element(const HNode& n) { return !n.cluster && n.child_count == 0; }
@@ -65,14 +65,14 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance = 1e-9, int
 // Rows only, the default in a closed scene (balance_closed_transport is --effect closure=on): each leaf's
 // receive factor is 1 / its row sum, so that it gathers as from a whole enclosure; send factors stay 1.
 // Coarse links leave office-floor's leaves a mean row sum of 0.97 (area-weighted), and its visited
-// rooms 2.9% too dark; scaled, 1.1% (docs/numerics.md, "Closed scenes"). Leaves whose raw row sum lies
+// rooms 2.9% too dark; scaled, 1.1% (see docs/numerics.md). Leaves whose raw row sum lies
 // outside [1/4, 4] keep 1, and so do the leaves `unscaled` marks (under a close cluster pair left whole:
 // Solver::under_close_pairs). Returns the number of such leaves; mean_row: the area-weighted mean raw sum.
 uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row = nullptr, const std::vector<uint8_t>* unscaled = nullptr);
 
 // What aggregation_correction fills, kept by a caller that corrects again and again (the solve's
-// sweeps): the node-sized arrays were fresh pages on every call, each 4 KiB a page fault (office-floor
-// 32 rooms: 0.94 M of its bake's 2.6 M faults, docs/performance.md).
+// sweeps): made on every call, the node-sized arrays would be fresh pages, each 4 KiB a page fault
+// (office-floor 32 rooms: 0.94 M of its bake's 2.6 M faults).
 struct CorrectionBuffers {
   CorrectionBuffers();
   ~CorrectionBuffers();

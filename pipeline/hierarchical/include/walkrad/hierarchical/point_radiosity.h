@@ -5,7 +5,7 @@
 // the link sees (F / F_open); any other is taken as the solve pushes it (a cluster's by direction, an
 // element's by the share of the child or quadrant the point lies in). The leaf's mean B is what the
 // solve balances; a vertex is where the display interpolates, and an area mean placed at a vertex
-// flattens every peak and fills every trough the leaf straddles (docs/numerics.md, "Vertex radiosity").
+// flattens every peak and fills every trough the leaf straddles (see docs/numerics.md).
 // For a vertex of the final gather (final_gather.h) the direct light is evaluated at the point apart:
 // there the sources send only what they reflect (Bt less their emission as sent) and punctual lights
 // are left out, B(x) = E + ρ H_indirect(x), and the gather adds ρ D(x); and every element source, near

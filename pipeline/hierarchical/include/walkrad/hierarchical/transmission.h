@@ -1,4 +1,4 @@
-// Diffuse transmission (issue 10): a transmitting material (glTF KHR_materials_diffuse_transmission or
+// Diffuse transmission: a transmitting material (glTF KHR_materials_diffuse_transmission or
 // KHR_materials_transmission, MGF td) lets light arriving on one side of a surface leave the other,
 // as a lampshade or a curtain does. Each transmitting polygon has a twin facing the other way
 // (walkrad/scene/transmission_twins.h). A leaf element of either side radiates B = E + ρ (H + D) + τ (H' + D'), where H' and D' are what the twin receives at the same

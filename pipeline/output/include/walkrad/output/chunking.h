@@ -1,4 +1,4 @@
-// Cutting a bake's surface into streamable chunks (issue 5): the cluster hierarchy is cut top-down
+// Cutting a bake's surface into streamable chunks: the cluster hierarchy is cut top-down
 // where a node holds at most max_triangles output triangles, so each chunk is a spatially compact
 // group of whole input polygons (a room's furniture stays with its room when the building's
 // hierarchy follows its rooms). Chunks come in depth-first order of the tree: deterministic.

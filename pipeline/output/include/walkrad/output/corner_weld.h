@@ -8,8 +8,8 @@
 // with none, it makes a new point. weld_corners gives that result without the scan: bit-identical
 // corners are grouped by a sort, each distinct position's neighbours within tol are found in
 // parallel (almost always none), and only the choice among them is made in corner order. (Scanning a
-// hash grid of cells, corner by corner, was the 150-room level's largest serial step of its mesh
-// phase: docs/performance.md.)
+// hash grid of cells, corner by corner, would be the 150-room level's largest serial step of its mesh
+// phase.)
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Discontinuity meshing of the output (issue 23; Lischinski, Tampieri & Greenberg 1992): the faces a
+// Discontinuity meshing of the output (Lischinski, Tampieri & Greenberg 1992): the faces a
 // walkthrough sees are cut along the shadow boundaries of the emitters that light them
 // (shadow_boundaries.h), so that output vertices lie where the direct light's slope jumps and
 // Gouraud shading bends there, instead of wherever the solution's quadtree edges happen to fall. The

@@ -1,6 +1,6 @@
 // Shadow boundaries: the D1 discontinuities of an area emitter's direct light on a receiver's plane,
-// where the part of the emitter a point sees changes form and the irradiance's slope jumps (issue 23's
-// discontinuity meshing; Heckbert 1992, "Discontinuity meshing for radiosity"; Lischinski, Tampieri &
+// where the part of the emitter a point sees changes form and the irradiance's slope jumps (for
+// discontinuity meshing: discontinuity_mesh.h; Heckbert 1992, "Discontinuity meshing for radiosity"; Lischinski, Tampieri &
 // Greenberg 1992). With polygonal emitters and occluders they lie on two kinds of critical surfaces:
 //   EV: an emitter corner e passes behind an occluder's silhouette edge ab; on the plane, the edge's
 //       shadow from e, its central projection p = e + (x − e)·h_e / (h_e − h_x) (h: height above the plane);

@@ -1,4 +1,4 @@
-// The effect plan (issue 10): before solving, decide from the scene and the walkthrough which light
+// The effect plan: before solving, decide from the scene and the walkthrough which light
 // transport a bake simulates, and say why, so that a bake pays only for effects the scene has:
 //   indirect    — only if a reflecting surface (ρ > 0) faces an emitter; otherwise B = E + one gather;
 //   visibility  — only if something can occlude: never in a convex enclosure (every polygon on or in

@@ -7,8 +7,8 @@
 // Near contacts too: a polygon parallel to another and in front of it within 2% of the smaller one's
 // size (a lamp a few millimetres under a ceiling) covers it; the covered polygon is cut along the
 // cover's outline, and the pieces under it take a copy of their material named "… (covered)", so
-// that the output mesh does not average their dark corners with the lit ones beside them (the
-// Cornell box's ceiling beside its light was 60–79% too dark at the outline). So do pieces enclosed by
+// that the output mesh does not average their dark corners with the lit ones beside them (averaged,
+// the Cornell box's ceiling beside its light is 60–79% too dark at the outline). So do pieces enclosed by
 // what stands on them: something stands along an edge with its back to the piece, nothing along any
 // edge faces it (a shelf board under a book with no bottom face).
 #pragma once

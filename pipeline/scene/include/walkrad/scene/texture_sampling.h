@@ -1,4 +1,4 @@
-// Textured reflectance and emission per element (issue 10). A material's reflectance and emission are
+// Textured reflectance and emission per element. A material's reflectance and emission are
 // its factors times its textures' averages; an element of a polygon with texture coordinates takes
 // the textures' mean over its own area instead: the mean of 8 × 8 stratified points of the element,
 // mapped to (u, v) by the polygon's affine map and sampled bilinearly. Only when the scene has such

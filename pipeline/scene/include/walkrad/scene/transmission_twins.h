@@ -1,4 +1,4 @@
-// Diffuse transmission's twins (issue 10): polygons are one-sided here, so each polygon whose material
+// Diffuse transmission's twins: polygons are one-sided here, so each polygon whose material
 // transmits (glTF KHR_materials_diffuse_transmission or KHR_materials_transmission, MGF td) gets a
 // twin: the same polygon facing the other way, with the same material. The hierarchical method then
 // passes light from one to the other (walkrad/hierarchical/transmission.h).

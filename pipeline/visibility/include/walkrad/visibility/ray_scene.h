@@ -30,8 +30,8 @@ class RayScene {
 
   // Occlusion of many segments at once through Embree's stream interface (rtcOccluded1M, coherent):
   // blocked[k] = 1 if segment k (from[k] → to[k]) is blocked. Not always occluded()'s answer, ray for
-  // ray: office-floor's 8 rooms changed in a few vertices when the mesher's one-point rays were cast
-  // through it, coherent flag or not (which rays differ and why was not looked into).
+  // ray: office-floor's 8 rooms change in a few vertices when the mesher's one-point rays are cast
+  // through it, coherent flag or not (which rays differ, and why, is not known).
   struct Segment {
     Vec3 from, to;
   };
