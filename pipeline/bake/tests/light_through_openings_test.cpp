@@ -5,7 +5,8 @@
 //   long floor miss a 1 m doorway; such a link is not settled dark, and a wall dark but for the
 //   patch the doorway lights is not taken at its mean: solver.h, Solver::unresolved, and
 //   error_estimate.cpp, worth_splitting);
-// - a hall whose one quad of floor is lit through one window;
+// - a hall whose one quad of floor is lit through one window (and, disabled while it fails, the same
+//   hall lit by what a courtyard outside the window reflects);
 // - a room behind a solid wall of no thickness stays exactly dark: every link across it is proven
 //   hidden (occlusion_proof.h), none is left to rays;
 // - a 5 cm slit in that wall lets its light through.
@@ -173,6 +174,51 @@ TEST(LightThroughOpenings, AHallLitThroughOneWindow) {
   const Compared c = compare(b, floor, points, {0, 1, 0});
   std::printf("hall: the floor by the window %.2f%% RMS, worst %.2f%% (reference σ up to %.2f%%)\n", 100 * c.rms, 100 * c.worst,
               100 * c.sigma);
+  EXPECT_LT(c.rms, 0.03);
+  EXPECT_LT(c.worst, 0.06 + 3 * c.sigma);
+}
+
+// The same hall lit only by what a courtyard outside the window reflects: a white wall 1.5 m out,
+// lit by an emitting floor below the sill, which no point of the hall's floor can see. Every floor
+// point in the window's patch takes its light from links through the 2 × 1.5 m opening of a 20 m wall,
+// whose rays mostly meet that wall: the class of a corridor lit through a doorway.
+// Disabled: it fails on the defaults. The patch reads up to 13.5% above the reference (9 points, 8.6% RMS
+// against σ ≤ 1.4%); the floor's part of a sweep's error is no smaller at --error 0.05 (0.51% against
+// 0.52%), and the estimate says 0.09%: the display refinement and
+// the estimate test the interpolation of emitters' light only, and this light comes from a lit wall.
+// The walkthrough's weighted error hides it (0.57%): the courtyard's wall, seen through the window, is
+// over 30 times brighter than the floor's brightest point, and weighs its square.
+TEST(LightThroughOpenings, DISABLED_AHallLitThroughOneWindowByACourtyard) {
+  Scene s = materials("a hall lit through one window by a courtyard");
+  s.materials.push_back({"white", {0.8, 0.8, 0.8}, {0, 0, 0}});
+  const uint32_t kWhite = uint32_t(s.materials.size() - 1);
+  const double size = 20, high = 5, x0 = 9, x1 = 11, y0 = 1.5, y1 = 3, depth = 1.5;
+  s.polygons.push_back(rect(Y, 0, 0, size, 0, size, +1, kFloor));
+  const uint32_t floor = 0;
+  s.polygons.push_back(rect(Y, high, 0, size, 0, size, -1, kCeiling));
+  s.polygons.push_back(rect(X, 0, 0, high, 0, size, +1, kWall));
+  s.polygons.push_back(rect(X, size, 0, high, 0, size, -1, kWall));
+  s.polygons.push_back(rect(Z, size, 0, size, 0, high, -1, kWall));
+  s.polygons.push_back(rect(Z, 0, 0, x0, 0, high, +1, kWall));  // the window wall, around the window
+  s.polygons.push_back(rect(Z, 0, x1, size, 0, high, +1, kWall));
+  s.polygons.push_back(rect(Z, 0, x0, x1, 0, y0, +1, kWall));
+  s.polygons.push_back(rect(Z, 0, x0, x1, y1, high, +1, kWall));
+  // The courtyard: its far wall white, its floor emitting upwards (below the sill: out of the hall
+  // floor's sight), its sides and top black.
+  s.polygons.push_back(rect(Z, -depth, x0 - 0.5, x1 + 0.5, y0 - 0.5, y1 + 0.5, +1, kWhite));
+  s.polygons.push_back(rect(Y, y0 - 0.5, -depth, 0, x0 - 0.5, x1 + 0.5, +1, kLamp));
+  s.polygons.push_back(rect(Y, y1 + 0.5, -depth, 0, x0 - 0.5, x1 + 0.5, -1, kBlack));
+  for (const double side : {x0 - 0.5, x1 + 0.5})
+    s.polygons.push_back(rect(X, side, y0 - 0.5, y1 + 0.5, -depth, 0, side < x0 ? +1 : -1, kBlack));
+  s.cameras.push_back({"the hall", {10, 1.7, 12}, normalize(Vec3(0, -0.4, -1)), normalize(Vec3(0, 1, -0.4)), 1.2, 1.5});
+  const test::DefaultBake b("courtyard", std::move(s));
+  std::vector<Vec3> points;
+  for (const double x : {8.0, 10.0, 12.0})
+    for (const double z : {2.0, 3.5, 6.0}) points.push_back({x, 0, z});
+  // Light that reaches a path only after a bounce in the courtyard: 16 times the paths for a σ of ~2%.
+  const Compared c = compare(b, floor, points, {0, 1, 0}, 262144);
+  std::printf("courtyard: the floor by the window %.2f%% RMS, worst %.2f%% (reference σ up to %.2f%%)\n", 100 * c.rms,
+              100 * c.worst, 100 * c.sigma);
   EXPECT_LT(c.rms, 0.03);
   EXPECT_LT(c.worst, 0.06 + 3 * c.sigma);
 }
