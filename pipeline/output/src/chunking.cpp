@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "walkrad/hierarchical/view_importance.h"
+#include "walkrad/visibility/view_grid.h"
 
 namespace walkrad {
 
@@ -88,18 +88,11 @@ std::vector<std::vector<float>> chunk_importance(const std::vector<Viewpoint>& v
   const size_t V = views.size();
   std::vector<double> sum(V * chunks, 0.0);  // by view, then chunk
   tbb::parallel_for(size_t(0), V, [&](size_t v) {  // each view writes its own row
-    const Viewpoint& view = views[v];
     thread_local std::vector<std::pair<uint32_t, double>> hits;
     hits.clear();
-    double total = 0;
-    for (int y = 0; y < grid; ++y)
-      for (int x = 0; x < grid; ++x) {
-        double weight = 0;
-        const Vec3 d = view_pixel_ray(view, grid, x, y, weight);
-        total += weight;
-        const RayScene::Hit hit = rays.intersect(view.position, d);
-        if (hit.hit) hits.push_back({polygon_chunk[hit.polygon], weight});
-      }
+    const double total = cast_view_grid(views[v], rays, grid, [&](const RayScene::Hit& hit, double weight) {
+      hits.push_back({polygon_chunk[hit.polygon], weight});
+    });
     const double batch = double(std::min(v / kBatch * kBatch + kBatch, V) - v / kBatch * kBatch);
     for (const auto& [chunk, weight] : hits) sum[v * chunks + chunk] += weight / (total * batch) * batch;
   });

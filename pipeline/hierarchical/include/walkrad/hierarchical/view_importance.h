@@ -12,9 +12,6 @@
 
 namespace walkrad {
 
-// The primary ray through pixel (x, y) of a grid² image of the view, and its weight cos³θ.
-Vec3 view_pixel_ray(const Viewpoint& v, int grid, int x, int y, double& weight);
-
 std::vector<ViewHit> cast_view_rays(const std::vector<Viewpoint>& views, const RayScene& rays, int grid, int max_views,
                                     uint64_t& rays_cast);
 

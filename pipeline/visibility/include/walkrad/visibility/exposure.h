@@ -9,13 +9,11 @@
 #include <vector>
 
 #include "walkrad/visibility/ray_scene.h"
+#include "walkrad/visibility/view_grid.h"
 
 namespace walkrad {
 
 constexpr int kMaxExposureViews = 64;
-
-// Direction through a point of the image, (sx, sy) in [-1, 1] from left/bottom to right/top.
-Vec3 view_ray_direction(const Viewpoint& view, double sx, double sy);
 
 // radiosity_at(polygon, point) → B there; emits(polygon) → true for emitters.
 double auto_exposure(const std::vector<Viewpoint>& views, const RayScene& rays, int grid,
