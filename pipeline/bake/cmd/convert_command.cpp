@@ -1,0 +1,37 @@
+// walkrad convert: a scene (.mgf, .gltf, .glb) written as glTF, for users who move on from MGF.
+#include <chrono>
+#include <cstdio>
+
+#include "commands.h"
+#include "walkrad/formats/error.h"
+#include "walkrad/formats/scene_reader.h"
+#include "walkrad/formats/scene_writer.h"
+
+namespace walkrad::command {
+
+void add_convert(CLI::App& app, ConvertCommand& c) {
+  c.app = app.add_subcommand("convert", "write a scene (.mgf, .gltf, .glb) as glTF (.glb or .gltf)");
+  c.app->add_option("scene", c.scene, "scene file (.mgf, .gltf, .glb)")->required();
+  c.app->add_option("output", c.output, "glTF file to write (.glb or .gltf)")->required()->check(
+      [](const std::string& out) {
+        const size_t dot = out.find_last_of('.');
+        const std::string ext = dot == std::string::npos ? "" : out.substr(dot);
+        return ext == ".glb" || ext == ".gltf" ? std::string() : std::string("the output must end in .glb or .gltf");
+      });
+
+}
+
+int run_convert(const ConvertCommand& c) {
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = read_scene(c.scene);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", c.scene.c_str(), w.c_str());
+  write_scene_gltf(scene, c.output);
+  size_t emitting = 0;
+  for (const Material& m : scene.materials) emitting += m.emits();
+  std::printf("walkrad: converted %s to %s: %zu polygons, %zu materials (%zu emitting), %zu viewpoints, %.2f s\n",
+              c.scene.c_str(), c.output.c_str(), scene.polygons.size(), scene.materials.size(), emitting,
+              scene.cameras.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return kExitOk;
+}
+
+}  // namespace walkrad::command
