@@ -159,6 +159,74 @@ SplitResult split_face(const Loop& face) {
   return r;
 }
 
+namespace {
+
+// The outline vertex P a bridge from a hole's rightmost vertex M joins (hole joining as in Eberly,
+// "Triangulation by Ear Clipping", 2002): the nearer end of the first outline edge the ray from M along
+// +x meets, unless a reflex vertex inside the triangle (M, hit, P) hides it. loop.size(): the ray meets
+// no edge (the hole is not inside the outline).
+size_t bridge_end(const std::vector<size_t>& loop, const std::vector<Vec2>& p2, Vec2 m, double size, double eps) {
+  // The nearest outline edge hit by the ray from M along +x.
+  double best_x = INFINITY;
+  size_t edge = loop.size();
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 a = p2[loop[i]], b = p2[loop[(i + 1) % loop.size()]];
+    if ((a.y > m.y) == (b.y > m.y) && a.y != m.y && b.y != m.y) continue;
+    if (a.y == b.y) continue;  // along the ray: its end points are found through the next edges
+    const double x = a.x + (m.y - a.y) * (b.x - a.x) / (b.y - a.y);
+    if (x >= m.x && x < best_x) {
+      best_x = x;
+      edge = i;
+    }
+  }
+  if (edge == loop.size()) return loop.size();
+  const Vec2 hit{best_x, m.y};
+  const size_t ea = edge, eb = (edge + 1) % loop.size();
+  size_t pick = p2[loop[ea]].x > p2[loop[eb]].x ? ea : eb;
+  if (length2(p2[loop[ea]] - hit) <= 1e-9 * size) pick = ea;
+  else if (length2(p2[loop[eb]] - hit) <= 1e-9 * size) pick = eb;
+  else {
+    // A reflex outline vertex inside triangle (M, hit, P) hides P: take the one closest in angle to +x.
+    const Vec2 pv = p2[loop[pick]];
+    const bool ccw = cross2(hit - m, pv - m) > 0;
+    double best_cos = -2, best_dist = INFINITY;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      if (i == pick) continue;
+      const Vec2 q = p2[loop[i]];
+      const Vec2 prev = p2[loop[(i + loop.size() - 1) % loop.size()]], next = p2[loop[(i + 1) % loop.size()]];
+      if (cross2(q - prev, next - q) >= 0) continue;  // not reflex
+      const Vec2 t0 = m, t1 = ccw ? hit : pv, t2 = ccw ? pv : hit;
+      if (cross2(t1 - t0, q - t0) < -eps || cross2(t2 - t1, q - t1) < -eps || cross2(t0 - t2, q - t2) < -eps) continue;
+      const double d = length2(q - m), c = (q.x - m.x) / d;
+      if (c > best_cos + 1e-12 || (std::fabs(c - best_cos) <= 1e-12 && d < best_dist)) {
+        best_cos = c;
+        best_dist = d;
+        pick = i;
+      }
+    }
+  }
+  // P may be in the loop more than once (earlier bridges end there): take the occurrence whose
+  // corner holds the bridge, so that bridges at one vertex do not cross.
+  {
+    const Vec2 pv = p2[loop[pick]], d = m - pv;
+    auto angle = [](Vec2 from, Vec2 to) {  // counter-clockwise, in [0, 2π)
+      const double a = std::atan2(cross2(from, to), dot2(from, to));
+      return a < 0 ? a + 2 * kPi : a;
+    };
+    for (size_t i = 0; i < loop.size(); ++i) {
+      if (length2(p2[loop[i]] - pv) > 1e-9 * size) continue;
+      const Vec2 out = p2[loop[(i + 1) % loop.size()]] - pv, back = p2[loop[(i + loop.size() - 1) % loop.size()]] - pv;
+      if (angle(out, d) <= angle(out, back)) {
+        pick = i;
+        break;
+      }
+    }
+  }
+  return pick;
+}
+
+}  // namespace
+
 bool join_holes(const Loop& outline, const std::vector<Loop>& holes, Loop& joined, std::string& why) {
   const Vec3 an = newell(outline);
   const double size = extent(outline);
@@ -223,64 +291,10 @@ bool join_holes(const Loop& outline, const std::vector<Loop>& holes, Loop& joine
     const std::vector<size_t>& hl = hole_loops[h];
     const size_t mi = hl[rightmost[h]];
     const Vec2 m = p2[mi];
-    // The nearest outline edge hit by the ray from M along +x.
-    double best_x = INFINITY;
-    size_t edge = loop.size();
-    for (size_t i = 0; i < loop.size(); ++i) {
-      const Vec2 a = p2[loop[i]], b = p2[loop[(i + 1) % loop.size()]];
-      if ((a.y > m.y) == (b.y > m.y) && a.y != m.y && b.y != m.y) continue;
-      if (a.y == b.y) continue;  // along the ray: its end points are found through the next edges
-      const double x = a.x + (m.y - a.y) * (b.x - a.x) / (b.y - a.y);
-      if (x >= m.x && x < best_x) {
-        best_x = x;
-        edge = i;
-      }
-    }
-    if (edge == loop.size()) {
+    const size_t pick = bridge_end(loop, p2, m, size, eps);
+    if (pick == loop.size()) {
       why = "hole " + std::to_string(h + 1) + " is not inside the outline";
       return false;
-    }
-    const Vec2 hit{best_x, m.y};
-    const size_t ea = edge, eb = (edge + 1) % loop.size();
-    size_t pick = p2[loop[ea]].x > p2[loop[eb]].x ? ea : eb;
-    if (length2(p2[loop[ea]] - hit) <= 1e-9 * size) pick = ea;
-    else if (length2(p2[loop[eb]] - hit) <= 1e-9 * size) pick = eb;
-    else {
-      // A reflex outline vertex inside triangle (M, hit, P) hides P: take the one closest in angle to +x.
-      const Vec2 pv = p2[loop[pick]];
-      const bool ccw = cross2(hit - m, pv - m) > 0;
-      double best_cos = -2, best_dist = INFINITY;
-      for (size_t i = 0; i < loop.size(); ++i) {
-        if (i == pick) continue;
-        const Vec2 q = p2[loop[i]];
-        const Vec2 prev = p2[loop[(i + loop.size() - 1) % loop.size()]], next = p2[loop[(i + 1) % loop.size()]];
-        if (cross2(q - prev, next - q) >= 0) continue;  // not reflex
-        const Vec2 t0 = m, t1 = ccw ? hit : pv, t2 = ccw ? pv : hit;
-        if (cross2(t1 - t0, q - t0) < -eps || cross2(t2 - t1, q - t1) < -eps || cross2(t0 - t2, q - t2) < -eps) continue;
-        const double d = length2(q - m), c = (q.x - m.x) / d;
-        if (c > best_cos + 1e-12 || (std::fabs(c - best_cos) <= 1e-12 && d < best_dist)) {
-          best_cos = c;
-          best_dist = d;
-          pick = i;
-        }
-      }
-    }
-    // P may be in the loop more than once (earlier bridges end there): take the occurrence whose
-    // corner holds the bridge, so that bridges at one vertex do not cross.
-    {
-      const Vec2 pv = p2[loop[pick]], d = m - pv;
-      auto angle = [](Vec2 from, Vec2 to) {  // counter-clockwise, in [0, 2π)
-        const double a = std::atan2(cross2(from, to), dot2(from, to));
-        return a < 0 ? a + 2 * kPi : a;
-      };
-      for (size_t i = 0; i < loop.size(); ++i) {
-        if (length2(p2[loop[i]] - pv) > 1e-9 * size) continue;
-        const Vec2 out = p2[loop[(i + 1) % loop.size()]] - pv, back = p2[loop[(i + loop.size() - 1) % loop.size()]] - pv;
-        if (angle(out, d) <= angle(out, back)) {
-          pick = i;
-          break;
-        }
-      }
     }
     // Splice: ..., P, M, (the rest of the hole from M), M, P, ...
     std::vector<size_t> splice;

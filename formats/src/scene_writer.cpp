@@ -96,25 +96,8 @@ int append_bytes(tinygltf::Model& model, const std::string& bytes) {
   return int(model.bufferViews.size()) - 1;
 }
 
-}  // namespace
-
-void write_scene_gltf(const Scene& scene, const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext != ".glb" && ext != ".gltf") throw std::invalid_argument(path + ": the output must end in .glb or .gltf");
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "walkrad";
-  model.buffers.resize(1);
-  tinygltf::Scene gscene;
-  for (const Material& m : scene.materials) {
-    model.materials.push_back(material(m));
-    for (const auto& [name, value] : model.materials.back().extensions)
-      if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) == model.extensionsUsed.end())
-        model.extensionsUsed.push_back(name);
-  }
-
+// A mesh a material, a node each, about the material's centre.
+void add_meshes(const Scene& scene, tinygltf::Model& model, tinygltf::Scene& gscene) {
   for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
     // Quads in one primitive; triangles in as few primitives as keep read_gltf from merging neighbours.
     std::vector<const Polygon*> quads;
@@ -166,6 +149,10 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
     gscene.nodes.push_back(int(model.nodes.size()) - 1);
   }
 
+}
+
+// A perspective camera node per viewpoint.
+void add_cameras(const Scene& scene, tinygltf::Model& model, tinygltf::Scene& gscene) {
   const Bounds all = scene.bounds();
   for (const Viewpoint& v : scene.cameras) {
     tinygltf::Camera cam;
@@ -186,6 +173,9 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
     model.nodes.push_back(node);
     gscene.nodes.push_back(int(model.nodes.size()) - 1);
   }
+}
+
+void add_ies_lights(const Scene& scene, tinygltf::Model& model, tinygltf::Scene& gscene) {
   // EXT_lights_ies: each profile once, its file's bytes in a bufferView; a node per luminaire.
   tinygltf::Value::Array profiles;
   std::vector<const IesProfile*> written;
@@ -226,6 +216,9 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
     model.extensions["EXT_lights_ies"] = tinygltf::Value(top);
     model.extensionsUsed.push_back("EXT_lights_ies");
   }
+}
+
+void add_punctual_lights(const Scene& scene, tinygltf::Model& model, tinygltf::Scene& gscene) {
   for (const PunctualLight& l : scene.lights) {  // KHR_lights_punctual: a node shining along its −Z
     if (l.type == PunctualLight::Type::ies) continue;
     tinygltf::Light light;
@@ -253,6 +246,31 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
     model.nodes.push_back(node);
     gscene.nodes.push_back(int(model.nodes.size()) - 1);
   }
+}
+
+}  // namespace
+
+void write_scene_gltf(const Scene& scene, const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".glb" && ext != ".gltf") throw std::invalid_argument(path + ": the output must end in .glb or .gltf");
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "walkrad";
+  model.buffers.resize(1);
+  tinygltf::Scene gscene;
+  for (const Material& m : scene.materials) {
+    model.materials.push_back(material(m));
+    for (const auto& [name, value] : model.materials.back().extensions)
+      if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) == model.extensionsUsed.end())
+        model.extensionsUsed.push_back(name);
+  }
+
+  add_meshes(scene, model, gscene);
+  add_cameras(scene, model, gscene);
+  add_ies_lights(scene, model, gscene);
+  add_punctual_lights(scene, model, gscene);
   model.scenes.push_back(gscene);
   model.defaultScene = 0;
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -205,6 +206,157 @@ void write_text(const std::string& path, const std::string& text) {
   if (!out) throw OutputError(path + ": cannot write");
 }
 
+// The reference: sample points over the walkthrough, and images from a few of its viewpoints, traced or
+// (--reference) read back; written to the sweep's folder with the images and reference-points.csv.
+struct SweepReference {
+  ReferenceSet points, image;
+  json images = json::array();
+  size_t view_count = 0;
+};
+
+void write_reference_files(StagedOutput& out, const SweepReference& ref) {
+  const ReferenceSet& points = ref.points;
+  const ReferenceSet& image = ref.image;
+  size_t first = 0;
+  for (const json& im : ref.images) {
+    const size_t count = size_t(im["width"].get<int>()) * im["height"].get<size_t>();
+    write_image_png(out.path(im["file"].get<std::string>()),
+                    std::vector<Vec3>(image.B.begin() + long(first), image.B.begin() + long(first + count)),
+                    std::vector<double>(image.luminance.begin() + long(first), image.luminance.begin() + long(first + count)),
+                    im["width"].get<int>(), im["height"].get<int>());
+    first += count;
+  }
+  std::ofstream csv(out.path("reference-points.csv"));
+  csv << "view,origin_x,origin_y,origin_z,dir_x,dir_y,dir_z,weight,distance,B_r,B_g,B_b,luminance,standard_error\n";
+  for (size_t k = 0; k < points.rays.size(); ++k) {
+    const ViewRay& r = points.rays[k];
+    csv << r.view << ',' << number(r.origin.x) << ',' << number(r.origin.y) << ',' << number(r.origin.z) << ','
+        << number(r.direction.x) << ',' << number(r.direction.y) << ',' << number(r.direction.z) << ',' << number(r.weight)
+        << ',' << number(points.distance[k]) << ',' << number(points.B[k].x) << ',' << number(points.B[k].y) << ','
+        << number(points.B[k].z) << ',' << number(points.luminance[k]) << ',' << number(points.standard_error[k]) << '\n';
+  }
+  if (!csv) throw OutputError(out.path("reference-points.csv") + ": cannot write");
+}
+
+SweepReference make_reference(const SweepSettings& s, const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
+                              StagedOutput& out, const std::function<void(const std::string&)>& log) {
+  const ReferenceTracer tracer(scene, rays);
+  SweepReference ref;
+  ref.view_count = std::min(views.size(), std::max<size_t>(1, s.max_views));
+  std::vector<ViewRay> pixels;
+  for (uint32_t v : s.image_width > 0 ? spread_views(views.size(), s.image_views) : std::vector<uint32_t>{}) {
+    int height = 0;
+    const std::vector<ViewRay> px = image_rays(views, v, s.image_width, height);
+    pixels.insert(pixels.end(), px.begin(), px.end());
+    ref.images.push_back({{"view", v}, {"name", views[v].name}, {"width", s.image_width}, {"height", height},
+                          {"file", "reference-view-" + std::to_string(v) + ".png"}});
+  }
+  const std::string key =
+      reference_key(s.scene, s.views, "points " + std::to_string(s.points) + " over " + std::to_string(ref.view_count) + " views, " +
+                                          std::to_string(s.samples) + " paths, images " + std::to_string(s.image_width) + " px × " +
+                                          std::to_string(s.image_views) + " views × " + std::to_string(s.image_samples) +
+                                          " paths, seed " + std::to_string(s.seed));
+  if (!s.reference.empty()) {
+    log("reference: reused from " + s.reference);
+    load_reference(s.reference + "/reference.bin", key, ref.points, ref.image);
+  } else {
+    log("reference: " + std::to_string(s.points) + " points × " + std::to_string(s.samples) + " paths");
+    ref.points = trace_reference(scene, rays, tracer, stratified_view_rays(views, ref.view_count, s.points / ref.view_count, s.seed),
+                                 s.samples, s.seed);
+    if (!pixels.empty()) {
+      log("reference images: " + std::to_string(pixels.size()) + " pixels × " + std::to_string(s.image_samples) + " paths");
+      ref.image = trace_reference(scene, rays, tracer, std::move(pixels), s.image_samples, s.seed + 1);
+    }
+  }
+  save_reference(out.path("reference.bin"), key, ref.points, ref.image);
+  write_reference_files(out, ref);
+  return ref;
+}
+
+// One run: its bake made in a child process (or, measured, read from its folder) and measured against
+// the reference. Returns its record for sweep.json; at_points: its luminance at every sample point.
+json measure_run(const SweepSettings& s, const Run& run, const SweepReference& ref, const std::vector<std::string>& surfaces,
+                 double tolerance, StagedOutput& out, std::vector<double>& at_points) {
+  const ReferenceSet& points = ref.points;
+  const bool measured = run.method == "measured";
+  const std::string dir = measured ? run.args[0] : out.path("bakes/" + run.name);
+  ProcessRun p;
+  if (!measured) {
+    const std::string exe = s.executable.empty() ? "/proc/self/exe" : s.executable;
+    std::vector<std::string> args{"bake", s.scene, "-o", dir, "-q", "--exposure", "1"};
+    if (!s.views.empty()) args.insert(args.end(), {"--views", s.views});
+    if (s.threads > 0) args.insert(args.end(), {"--threads", std::to_string(s.threads)});
+    args.insert(args.end(), run.args.begin(), run.args.end());
+    const std::string log_path = out.path("bakes/" + run.name + ".log");
+    p = run_process(exe, args, log_path);
+    if (p.exit_code >= kExitBadArguments && p.exit_code <= kExitLimitReached)  // the bake's own refusal: keep its code
+      throw InputError(s.scene, "run " + run.name, "the bake failed: " + last_line(log_path), ExitCode(p.exit_code));
+    if (p.exit_code != 0)
+      throw std::runtime_error("the bake of run " + run.name + " failed (exit code " + std::to_string(p.exit_code) +
+                               "): " + last_line(log_path));
+  }
+  std::ifstream report_file(dir + "/report.json");
+  if (!report_file) throw InputError(dir, "", "no report.json: not a bake folder");
+  const json report = json::parse(report_file);
+  if (measured) p.wall_seconds = report.value("total_seconds", 0.0);
+  const json& counts = report.at("counts");
+  const BakeSampler bake = BakeSampler::open(dir);
+  at_points = sample_bake(bake, points, tolerance);
+  const ErrorMeasures e = relative_errors(at_points, points.luminance, points.weight);
+  const ErrorMeasures ie = relative_errors(sample_bake(bake, ref.image, tolerance), ref.image.luminance, ref.image.weight);
+  const ErrorMeasures ci = reference_error_bar(points.luminance, points.standard_error, points.weight);
+  const ErrorMeasures image_ci = reference_error_bar(ref.image.luminance, ref.image.standard_error, ref.image.weight);
+  json phases = json::object();
+  for (const json& ph : report.at("phases")) phases[ph.at("name").get<std::string>()] = ph.at("seconds");
+  json rec = {{"name", run.name}, {"method", run.method},
+              {"error", std::isnan(run.error) ? json(nullptr) : json(run.error)},
+              {"element_size", std::isnan(run.element_size) ? json(nullptr) : json(run.element_size)},
+              {"args", run.args}, {"seconds", p.wall_seconds}, {"cpu_seconds", p.cpu_seconds}, {"phases", phases},
+              {"elements", counts.value("elements", uint64_t(0))},
+              {"links", counts.contains("links") ? counts.at("links") : counts.value("form_factor_pairs", json(0))},
+              {"rays", counts.value("visibility_rays", uint64_t(0))}, {"triangles", counts.value("triangles", uint64_t(0))},
+              {"peak_rss_mib", p.peak_rss_mib}, {"output_bytes", folder_bytes(dir)},
+              {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted},
+              {"estimated_error", estimated_error(report)}, {"max", e.max},
+              {"max_weighted", e.max_weighted}, {"bias", e.bias}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
+              {"image_rms_weighted", or_null(ie.points, ie.rms_weighted)}, {"reference_ci_rms", ci.rms},
+              {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", or_null(image_ci.points, image_ci.rms)},
+              {"absorbed_over_emitted", sum3(report.at("energy").at("absorbed_w")) / sum3(report.at("energy").at("emitted_w"))},
+              {"worst_point", worst_point(points, at_points)}, {"surfaces", surface_errors(surfaces, at_points, points)},
+              {"counts", counts}};
+  if (!s.keep_bakes && !measured) fs::remove_all(dir);
+  return rec;
+}
+
+// Every run at every sample point, beside the reference, for a reader who wants to look closer.
+void write_bake_points(const std::string& path, const std::vector<Run>& all, const ReferenceSet& points,
+                       const std::vector<std::string>& surfaces, const std::vector<std::vector<double>>& per_point) {
+  std::ofstream csv(path);
+  csv << "point,surface,reference";
+  for (const Run& run : all) csv << ',' << run.name;
+  csv << '\n';
+  for (size_t k = 0; k < points.rays.size(); ++k) {
+    csv << k << ",\"" << surfaces[k] << "\"," << number(points.luminance[k]);
+    for (const std::vector<double>& v : per_point) csv << ',' << number(v[k]);
+    csv << '\n';
+  }
+  if (!csv) throw OutputError(path + ": cannot write");
+}
+
+// plot_sweep.py run on the sweep's folder: whether its plots and report.md were written.
+bool plot(StagedOutput& out) {
+  // Debian's python3-matplotlib is installed for the system interpreter, which a PATH may shadow.
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const ProcessRun p = run_process(python, {out.path("plot_sweep.py"), out.path("")}, out.path("plot.log"));
+  if (p.exit_code == 0) {
+    fs::remove(out.path("plot.log"));
+    return true;
+  }
+  std::fprintf(stderr, "walkrad: warning: plots and report.md not written (python3 with matplotlib is needed: %s)\n",
+               last_line(out.path("plot.log")).c_str());
+  return false;
+}
+
 }  // namespace
 
 SweepSummary run_sweep(const SweepSettings& s) {
@@ -222,68 +374,14 @@ SweepSummary run_sweep(const SweepSettings& s) {
     if (s.progress) std::fprintf(stderr, "walkrad: sweep: %s\n", line.c_str());
   };
 
-  // The reference: sample points over the walkthrough, and images from a few of its viewpoints.
   const RayScene rays(scene);
-  const ReferenceTracer tracer(scene, rays);
-  const size_t view_count = std::min(views.size(), std::max<size_t>(1, s.max_views));
-  ReferenceSet points, image;
-  json images = json::array();
-  std::vector<ViewRay> pixels;
-  for (uint32_t v : s.image_width > 0 ? spread_views(views.size(), s.image_views) : std::vector<uint32_t>{}) {
-    int height = 0;
-    const std::vector<ViewRay> px = image_rays(views, v, s.image_width, height);
-    pixels.insert(pixels.end(), px.begin(), px.end());
-    images.push_back({{"view", v}, {"name", views[v].name}, {"width", s.image_width}, {"height", height},
-                      {"file", "reference-view-" + std::to_string(v) + ".png"}});
-  }
-  const std::string key =
-      reference_key(s.scene, s.views, "points " + std::to_string(s.points) + " over " + std::to_string(view_count) + " views, " +
-                                          std::to_string(s.samples) + " paths, images " + std::to_string(s.image_width) + " px × " +
-                                          std::to_string(s.image_views) + " views × " + std::to_string(s.image_samples) +
-                                          " paths, seed " + std::to_string(s.seed));
-  if (!s.reference.empty()) {
-    log("reference: reused from " + s.reference);
-    load_reference(s.reference + "/reference.bin", key, points, image);
-  } else {
-    log("reference: " + std::to_string(s.points) + " points × " + std::to_string(s.samples) + " paths");
-    points = trace_reference(scene, rays, tracer, stratified_view_rays(views, view_count, s.points / view_count, s.seed),
-                             s.samples, s.seed);
-    if (!pixels.empty()) {
-      log("reference images: " + std::to_string(pixels.size()) + " pixels × " + std::to_string(s.image_samples) + " paths");
-      image = trace_reference(scene, rays, tracer, std::move(pixels), s.image_samples, s.seed + 1);
-    }
-  }
-  save_reference(out.path("reference.bin"), key, points, image);
-  {
-    size_t first = 0;
-    for (const json& im : images) {
-      const size_t count = size_t(im["width"].get<int>()) * im["height"].get<size_t>();
-      write_image_png(out.path(im["file"].get<std::string>()),
-                      std::vector<Vec3>(image.B.begin() + long(first), image.B.begin() + long(first + count)),
-                      std::vector<double>(image.luminance.begin() + long(first), image.luminance.begin() + long(first + count)),
-                      im["width"].get<int>(), im["height"].get<int>());
-      first += count;
-    }
-  }
+  const SweepReference ref = make_reference(s, scene, rays, views, out, log);
+  const ReferenceSet& points = ref.points;
   const ErrorMeasures ci = reference_error_bar(points.luminance, points.standard_error, points.weight);
-  const ErrorMeasures image_ci = reference_error_bar(image.luminance, image.standard_error, image.weight);
-  {
-    std::ofstream csv(out.path("reference-points.csv"));
-    csv << "view,origin_x,origin_y,origin_z,dir_x,dir_y,dir_z,weight,distance,B_r,B_g,B_b,luminance,standard_error\n";
-    for (size_t k = 0; k < points.rays.size(); ++k) {
-      const ViewRay& r = points.rays[k];
-      csv << r.view << ',' << number(r.origin.x) << ',' << number(r.origin.y) << ',' << number(r.origin.z) << ','
-          << number(r.direction.x) << ',' << number(r.direction.y) << ',' << number(r.direction.z) << ',' << number(r.weight)
-          << ',' << number(points.distance[k]) << ',' << number(points.B[k].x) << ',' << number(points.B[k].y) << ','
-          << number(points.B[k].z) << ',' << number(points.luminance[k]) << ',' << number(points.standard_error[k]) << '\n';
-    }
-    if (!csv) throw OutputError(out.path("reference-points.csv") + ": cannot write");
-  }
-
+  const ErrorMeasures image_ci = reference_error_bar(ref.image.luminance, ref.image.standard_error, ref.image.weight);
   const std::vector<std::string> surfaces = surface_names(scene, rays, points, diagonal);
 
   // The bakes, one child process each.
-  const std::string exe = s.executable.empty() ? "/proc/self/exe" : s.executable;
   const double tolerance = 1e-4 * diagonal;
   fs::create_directories(out.path("bakes"));
   json records = json::array();
@@ -294,99 +392,37 @@ SweepSummary run_sweep(const SweepSettings& s) {
   }
   std::vector<std::vector<double>> per_point;  // each run's luminance at every sample point, for bake-points.csv
   for (const Run& run : all) {
-    const bool measured = run.method == "measured";
-    const std::string dir = measured ? run.args[0] : out.path("bakes/" + run.name);
-    ProcessRun p;
-    if (!measured) {
-      std::vector<std::string> args{"bake", s.scene, "-o", dir, "-q", "--exposure", "1"};
-      if (!s.views.empty()) args.insert(args.end(), {"--views", s.views});
-      if (s.threads > 0) args.insert(args.end(), {"--threads", std::to_string(s.threads)});
-      args.insert(args.end(), run.args.begin(), run.args.end());
-      const std::string log_path = out.path("bakes/" + run.name + ".log");
-      p = run_process(exe, args, log_path);
-      if (p.exit_code >= kExitBadArguments && p.exit_code <= kExitLimitReached)  // the bake's own refusal: keep its code
-        throw InputError(s.scene, "run " + run.name, "the bake failed: " + last_line(log_path), ExitCode(p.exit_code));
-      if (p.exit_code != 0)
-        throw std::runtime_error("the bake of run " + run.name + " failed (exit code " + std::to_string(p.exit_code) +
-                                 "): " + last_line(log_path));
-    }
-    std::ifstream report_file(dir + "/report.json");
-    if (!report_file) throw InputError(dir, "", "no report.json: not a bake folder");
-    const json report = json::parse(report_file);
-    if (measured) p.wall_seconds = report.value("total_seconds", 0.0);
-    const json& counts = report.at("counts");
-    const BakeSampler bake = BakeSampler::open(dir);
-    const std::vector<double> at_points = sample_bake(bake, points, tolerance);
-    const ErrorMeasures e = relative_errors(at_points, points.luminance, points.weight);
-    per_point.push_back(at_points);
-    const ErrorMeasures ie = relative_errors(sample_bake(bake, image, tolerance), image.luminance, image.weight);
-    json phases = json::object();
-    for (const json& ph : report.at("phases")) phases[ph.at("name").get<std::string>()] = ph.at("seconds");
-    json rec = {{"name", run.name}, {"method", run.method},
-                {"error", std::isnan(run.error) ? json(nullptr) : json(run.error)},
-                {"element_size", std::isnan(run.element_size) ? json(nullptr) : json(run.element_size)},
-                {"args", run.args}, {"seconds", p.wall_seconds}, {"cpu_seconds", p.cpu_seconds}, {"phases", phases},
-                {"elements", counts.value("elements", uint64_t(0))},
-                {"links", counts.contains("links") ? counts.at("links") : counts.value("form_factor_pairs", json(0))},
-                {"rays", counts.value("visibility_rays", uint64_t(0))}, {"triangles", counts.value("triangles", uint64_t(0))},
-                {"peak_rss_mib", p.peak_rss_mib}, {"output_bytes", folder_bytes(dir)},
-                {"points", e.points}, {"rms", e.rms}, {"rms_weighted", e.rms_weighted},
-                {"estimated_error", estimated_error(report)}, {"max", e.max},
-                {"max_weighted", e.max_weighted}, {"bias", e.bias}, {"image_pixels", ie.points}, {"image_rms", or_null(ie.points, ie.rms)},
-                {"image_rms_weighted", or_null(ie.points, ie.rms_weighted)}, {"reference_ci_rms", ci.rms},
-                {"reference_ci_rms_weighted", ci.rms_weighted}, {"reference_image_ci_rms", or_null(image_ci.points, image_ci.rms)},
-                {"absorbed_over_emitted", sum3(report.at("energy").at("absorbed_w")) / sum3(report.at("energy").at("emitted_w"))},
-                {"worst_point", worst_point(points, at_points)}, {"surfaces", surface_errors(surfaces, at_points, points)},
-                {"counts", counts}};
+    per_point.emplace_back();
+    const json rec = measure_run(s, run, ref, surfaces, tolerance, out, per_point.back());
     records.push_back(rec);
     char line[256];
     std::snprintf(line, sizeof line, "%s: %.2f s, %.0f MiB, %s links, error %.2f%% (weighted %.2f%%, image %.2f%%)",
-                  run.name.c_str(), p.wall_seconds, p.peak_rss_mib, rec["links"].dump().c_str(), 100 * e.rms,
-                  100 * e.rms_weighted, 100 * ie.rms_weighted);
+                  run.name.c_str(), rec["seconds"].get<double>(), rec["peak_rss_mib"].get<double>(), rec["links"].dump().c_str(),
+                  100 * rec["rms"].get<double>(), 100 * rec["rms_weighted"].get<double>(),
+                  100 * (rec["image_rms_weighted"].is_null() ? 0.0 : rec["image_rms_weighted"].get<double>()));
     log(line);
-    if (!s.keep_bakes && !measured) fs::remove_all(dir);
   }
 
   json doc = {{"format", "walkrad-sweep"}, {"version", 1}, {"command", s.command}, {"scene", s.scene}, {"views", s.views},
               {"viewpoints", views.size()}, {"input_polygons", scene.polygons.size()}, {"threads", s.threads},
               {"unavailable", json::array({"hemicube: walkrad bake has no hemicube form factor option"})},
-              {"reference", {{"points", points.rays.size()}, {"measured_points", ci.points}, {"views", view_count},
+              {"reference", {{"points", points.rays.size()}, {"measured_points", ci.points}, {"views", ref.view_count},
                              {"samples", s.samples}, {"rays", points.rays_cast}, {"seconds", points.seconds},
                              {"ci", error_json(ci)}, {"image_ci", error_json(image_ci)}, {"image_samples", s.image_samples},
-                             {"image_rays", image.rays_cast}, {"image_seconds", image.seconds}, {"images", images},
+                             {"image_rays", ref.image.rays_cast}, {"image_seconds", ref.image.seconds}, {"images", ref.images},
                              {"seed", s.seed}}},
               {"runs", records}};
   write_text(out.path("sweep.json"), doc.dump(2) + "\n");
-  {  // every run at every sample point, beside the reference, for a reader who wants to look closer
-    std::ofstream csv(out.path("bake-points.csv"));
-    csv << "point,surface,reference";
-    for (const Run& run : all) csv << ',' << run.name;
-    csv << '\n';
-    for (size_t k = 0; k < points.rays.size(); ++k) {
-      csv << k << ",\"" << surfaces[k] << "\"," << number(points.luminance[k]);
-      for (const std::vector<double>& v : per_point) csv << ',' << number(v[k]);
-      csv << '\n';
-    }
-    if (!csv) throw OutputError(out.path("bake-points.csv") + ": cannot write");
-  }
+  write_bake_points(out.path("bake-points.csv"), all, points, surfaces, per_point);
   write_csv(out.path("sweep.csv"), records);
   if (!s.keep_bakes) fs::remove_all(out.path("bakes"));
 
   SweepSummary summary;
   summary.output = s.output;
   summary.runs = runs.size();
-  summary.reference_seconds = points.seconds + image.seconds;
+  summary.reference_seconds = points.seconds + ref.image.seconds;
   write_text(out.path("plot_sweep.py"), kSweepPlotScript);
-  if (s.plots) {
-    // Debian's python3-matplotlib is installed for the system interpreter, which a PATH may shadow.
-    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const ProcessRun p = run_process(python, {out.path("plot_sweep.py"), out.path("")}, out.path("plot.log"));
-    summary.plotted = p.exit_code == 0;
-    if (summary.plotted) fs::remove(out.path("plot.log"));
-    if (!summary.plotted)
-      std::fprintf(stderr, "walkrad: warning: plots and report.md not written (python3 with matplotlib is needed: %s)\n",
-                   last_line(out.path("plot.log")).c_str());
-  }
+  if (s.plots) summary.plotted = plot(out);
   out.commit();
   return summary;
 }

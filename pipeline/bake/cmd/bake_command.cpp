@@ -102,10 +102,7 @@ int run_bake(BakeCommand& c, const Ranks& rk, bool& stopped) {
     if (eq == std::string::npos) throw InputError("--effect", e, "expected NAME=on or NAME=off", kExitBadArguments);
     bs.effects[e.substr(0, eq)] = e.substr(eq + 1);
   }
-  if (bs.output.empty()) {
-    std::string name = bs.scene.substr(bs.scene.find_last_of('/') + 1);
-    bs.output = name.substr(0, name.find_last_of('.')) + ".bake";
-  }
+  if (bs.output.empty()) bs.output = default_output(bs.scene, ".bake");
   bool with_web = c.with_web;
   if (rk.rank != 0) {
     bs.output = (std::filesystem::temp_directory_path() /

@@ -15,6 +15,13 @@
 
 namespace walkrad::command {
 
+// A subcommand's output folder by default: the scene file's name less its extension, with `suffix`, in
+// the working folder (office.gltf → office.bake).
+inline std::string default_output(const std::string& scene, const char* suffix) {
+  const std::string name = scene.substr(scene.find_last_of('/') + 1);
+  return name.substr(0, name.find_last_of('.')) + suffix;
+}
+
 struct BakeCommand {
   CLI::App* app = nullptr;
   BakeSettings bs;

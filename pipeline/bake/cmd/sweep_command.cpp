@@ -52,10 +52,7 @@ int run_sweep(SweepCommand& c, int argc, char** argv) {
   ss.plots = !c.no_plots;
   ss.progress = !c.quiet;
   for (int i = 0; i < argc; ++i) ss.command += std::string(i ? " " : "") + (i ? argv[i] : "walkrad");
-  if (ss.output.empty()) {
-    std::string name = ss.scene.substr(ss.scene.find_last_of('/') + 1);
-    ss.output = name.substr(0, name.find_last_of('.')) + ".sweep";
-  }
+  if (ss.output.empty()) ss.output = default_output(ss.scene, ".sweep");
   const SweepSummary s = walkrad::run_sweep(ss);
   std::printf("walkrad: swept %s: %zu bakes, reference %.1f s%s\n", s.output.c_str(), s.runs, s.reference_seconds,
               s.plotted ? ", plots and report.md written" : "");

@@ -16,6 +16,7 @@
 #include "bake_inputs.h"
 #include "checkpoint_file.h"
 #include "method_run.h"
+#include "prepared_scene.h"
 #include "walkrad/formats/chunk_writer.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/gltf_reader.h"
@@ -45,28 +46,116 @@ using namespace bake_detail;
 
 namespace {
 
-// Identifies what the extinction grid is made from: every polygon's corners and the volume settings
-// (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
-std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  auto add = [&](const void* data, size_t size) { h = fnv1a(data, size, h); };
-  for (const Polygon& p : scene.polygons) {
-    add(&p.count, sizeof p.count);
-    for (int k = 0; k < p.count; ++k) add(&p.v[size_t(k)], sizeof(Vec3));
-  }
-  add(&vs.min_polygons, sizeof vs.min_polygons);
-  add(&vs.feature_ratio, sizeof vs.feature_ratio);
-  add(&vs.small_object, sizeof vs.small_object);
-  add(&vs.max_dispersion, sizeof vs.max_dispersion);
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
-}
-
 void write_json(const std::string& path, const json& j) {
   std::ofstream out(path, std::ios::binary);
   out << j.dump(2) << '\n';
   if (!out) throw OutputError(path + ": cannot write");
+}
+
+// Settings that name a combination no method runs: refused before anything is read.
+void check_method_settings(const BakeSettings& s) {
+  if (s.method != "classic" && s.method != "hierarchical")
+    throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
+  if (!s.checkpoint.empty() && s.method != "hierarchical")
+    throw InputError("--checkpoint", s.checkpoint, "checkpoints save the hierarchical method's solve (the classic method has no rounds)",
+                     kExitBadArguments);
+  if (s.solver == "southwell" && s.method != "classic")
+    throw InputError("--solver", s.solver, "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
+                     kExitBadArguments);
+  if (s.form_factors == "hemicube" && s.method != "classic")
+    throw InputError("--form-factors", s.form_factors, "the hemicube computes the classic method's matrix (use --method classic)",
+                     kExitBadArguments);
+  if (s.solver == "jacobi" && s.method == "classic")
+    throw InputError("--solver", s.solver, "the classic method solves by Gauss-Seidel or southwell", kExitBadArguments);
+}
+
+void require_emitter(const Scene& input, const std::string& file) {
+  bool any_emitter = false;
+  for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
+  for (const PunctualLight& l : input.lights) any_emitter = any_emitter || max_component(l.intensity) > 0;
+  if (!any_emitter)
+    throw InputError(file, "", "the scene has no emitter (no material with emission, no punctual light): nothing to bake");
+}
+
+// The "exposure" phase: --exposure, else from the walkthrough's views (exposure.h), else from the surfaces.
+double choose_exposure(const BakeSettings& s, const PreparedScene& p, const std::vector<Viewpoint>& views,
+                       const MethodResult& result, uint64_t& exposure_rays) {
+  if (s.exposure > 0) return s.exposure;
+  const double exposure = auto_exposure(
+      views, p.rays, 64, result.radiosity_at,
+      [&](uint32_t poly) { return p.scene.materials[p.scene.polygons[poly].material].emits(); }, exposure_rays);
+  return views.empty() ? result.surface_exposure : exposure;
+}
+
+// The "chunks" and "write" phases' output: the mesh cut into chunks, each optimised, encoded and
+// written, and the manifest that lists them.
+struct WrittenChunks {
+  size_t count = 0;
+  uint64_t importance_rays = 0;
+};
+WrittenChunks write_chunks(const BakeSettings& s, const BakeInputs& inputs, const PreparedScene& p, const Bounds& bounds,
+                           const SurfaceMesh& surface, double exposure, StagedOutput& out, Phases& phases) {
+  const std::vector<Viewpoint>& views = inputs.views;
+  ChunkCut cut = cut_into_chunks(surface, p.tree, s.chunk_triangles);
+  for (ChunkMesh& m : cut.meshes) optimize_chunk(m);
+  ChunkEncoding encoding;
+  if (s.compress) {
+    // One grid for every chunk (borders quantise alike). White on screen is B = π / exposure.
+    float radiosity_max = 0;
+    for (float b : surface.mesh.radiosity) radiosity_max = std::max(radiosity_max, b);
+    encoding = draco_encoding(surface.mesh.bounds(), s.position_tolerance * length(bounds.diagonal()), radiosity_max,
+                              s.radiosity_tolerance * kPi / exposure);
+  }
+  WrittenChunks written;
+  written.count = cut.meshes.size();
+  // Fine enough that a sliver of a chunk seen through a doorway is not missed (a runtime would leave it
+  // unloaded): up to 256² rays a view, about 16 million rays in all for long walkthroughs.
+  const int chunk_grid = std::clamp(int(std::sqrt(1.6e7 / double(std::max<size_t>(views.size(), 1)))), 32, 256);
+  const auto importance = chunk_importance(views, p.rays, cut.polygon_chunk, cut.meshes.size(), chunk_grid, written.importance_rays);
+
+  phases.start("write");
+  Manifest manifest;
+  manifest.tool = std::string("walkrad ") + WALKRAD_VERSION;
+  manifest.scene_file = s.scene;
+  manifest.scene_hash = inputs.scene_hash;
+  manifest.bounds = surface.mesh.bounds();
+  manifest.exposure = exposure;
+  manifest.viewpoints = views;
+  manifest.settings = s.to_json();
+  manifest.effects = p.plan.to_json();
+  // Each chunk encoded (Draco) and written on its own, so in parallel: the same files, and the manifest
+  // lists them in order (5.3 s on one thread for the 150-room level's chunks).
+  manifest.chunks.resize(cut.meshes.size());
+  tbb::parallel_for(size_t(0), cut.meshes.size(), [&](size_t c) {
+    char name[32];
+    std::snprintf(name, sizeof name, "chunk-%04zu.glb", c);
+    ChunkInfo& chunk = manifest.chunks[c];
+    chunk.file = name;
+    chunk.bounds = cut.meshes[c].bounds();
+    chunk.triangles = cut.meshes[c].triangle_count();
+    chunk.bytes = write_chunk(out.path(chunk.file), cut.meshes[c], encoding);
+    chunk.importance = importance[c];
+  });
+  write_json(out.path("manifest.json"), manifest_to_json(manifest));
+  return written;
+}
+
+// Under mpirun (walkrad/core/ranks.h): every rank's share of the divided work, and its balance: the
+// busiest rank's compute time over the mean (1: even). A collective call, made by every rank.
+json ranks_report() {
+  json per_rank = json::array();
+  double busiest = 0, mean = 0;
+  const std::vector<RankWork> work = all_rank_work();
+  for (size_t r = 0; r < work.size(); ++r) {
+    per_rank.push_back({{"rank", r}, {"items", work[r].items}, {"links", work[r].links}, {"rays", work[r].rays},
+                        {"compute_seconds", work[r].compute_seconds}, {"exchange_seconds", work[r].exchange_seconds},
+                        {"bytes_sent", work[r].bytes_sent}, {"peak_memory_mb", work[r].peak_memory_mb},
+                        {"links_held", work[r].links_held}, {"link_mb_peak", double(work[r].link_bytes_peak) / double(1 << 20)}});
+    busiest = std::max(busiest, work[r].compute_seconds);
+    mean += work[r].compute_seconds / double(work.size());
+  }
+  return {{"count", ranks().size}, {"balance", mean > 0 ? busiest / mean : 1.0},
+          {"bytes_exchanged", ranks_bytes_exchanged()}, {"per_rank", per_rank}};
 }
 
 }  // namespace
@@ -93,19 +182,7 @@ double quality_error(const std::string& quality) {
 
 BakeSummary bake(const BakeSettings& s) {
   const auto t_start = Clock::now();
-  if (s.method != "classic" && s.method != "hierarchical")
-    throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
-  if (!s.checkpoint.empty() && s.method != "hierarchical")
-    throw InputError("--checkpoint", s.checkpoint, "checkpoints save the hierarchical method's solve (the classic method has no rounds)",
-                     kExitBadArguments);
-  if (s.solver == "southwell" && s.method != "classic")
-    throw InputError("--solver", s.solver, "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
-                     kExitBadArguments);
-  if (s.form_factors == "hemicube" && s.method != "classic")
-    throw InputError("--form-factors", s.form_factors, "the hemicube computes the classic method's matrix (use --method classic)",
-                     kExitBadArguments);
-  if (s.solver == "jacobi" && s.method == "classic")
-    throw InputError("--solver", s.solver, "the classic method solves by Gauss-Seidel or southwell", kExitBadArguments);
+  check_method_settings(s);
   std::unique_ptr<tbb::global_control> limit;
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   const int threads = s.threads > 0 ? s.threads : tbb::info::default_concurrency();
@@ -120,178 +197,57 @@ BakeSummary bake(const BakeSettings& s) {
     for (const std::string& w : input.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", s.scene.c_str(), w.c_str());
   const CheckpointFile checkpoint(s, inputs.scene_hash, inputs.views_hash);
   if (!s.checkpoint.empty()) checkpoint.check_writable();  // before the long work, not after a round
-  bool any_emitter = false;
-  for (const Polygon& p : input.polygons) any_emitter = any_emitter || input.materials[p.material].emits();
-  for (const PunctualLight& l : input.lights) any_emitter = any_emitter || max_component(l.intensity) > 0;
-  if (!any_emitter)
-    throw InputError(s.scene, "", "the scene has no emitter (no material with emission, no punctual light): nothing to bake");
+  require_emitter(input, s.scene);
   // Fail on an unwritable destination before the long work, not after it.
   StagedOutput out(s.output);
 
   phases.start("prepare");
   const Bounds bounds = input.bounds();
-  ContactSplitStats split_stats;
-  Scene scene = split_contacts(input, split_stats);
-  // The input's polygons and textures are not read again (the split scene holds copies): freed.
-  const size_t input_polygons = input.polygons.size();
-  std::vector<Polygon>().swap(inputs.scene.polygons);
-  std::vector<Texture>().swap(inputs.scene.textures);
-  // Transmission is decided first: its twins (back faces) are geometry, in the rays and the tree.
-  const Effect transmission = plan_transmission(scene, s.method, s.effects);
-  const std::vector<uint32_t> twins = transmission.on ? add_transmission_twins(scene) : std::vector<uint32_t>{};
-  const RayScene rays(scene);
-  const ClusterTree tree = build_cluster_tree(scene);
-  VolumeSettings volume_settings;
-  volume_settings.min_polygons = s.volume_min_polygons;
-  volume_settings.penumbra_ratio = s.volume_penumbra_ratio;
-  const VolumeClusters volume_clusters = s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{};
-  if (const std::vector<int> lossless = channels_without_absorption(scene); !lossless.empty()) {
-    uint64_t closure_rays = 0, pressed = 0;
-    if (is_closed(scene, rays, closure_rays, pressed, nullptr, &tree)) {
-      static const char* kNames[] = {"red", "green", "blue"};
-      std::string which;
-      for (int c : lossless) which += std::string(which.empty() ? "" : ", ") + kNames[c];
-      throw InputError(s.scene, "", "the scene is closed (no ray escapes) and no surface absorbs light (reflectance + "
-                                    "transmittance = 1 everywhere, channels: " + which + "): every bounce returns all "
-                                    "the light, so radiosity has no finite value; give some surface a reflectance below 1");
-    }
-  }
-  EffectPlan plan = plan_effects(scene, rays, views, s.view_independent, s.method, s.effects, &volume_clusters, &tree);
-  plan.transmission = transmission;
+  const PreparedScene prepared(inputs, s);
+  const EffectPlan& plan = prepared.plan;
   if (s.explain) std::printf("walkrad: effect plan for %s:\n%s", s.scene.c_str(), plan.explain().c_str());
-  // The extinction grid: reused from the previous bake in this folder when it was made from the same
-  // geometry and settings (its key), else rasterised.
-  ExtinctionGrid grid;
-  std::unique_ptr<RayScene> solid;
-  VolumeVisibility volume_visibility;
-  json volumes_report = {{"on", plan.volumes.on}};
+  BakeVolumes volumes;
+  volumes.report = {{"on", plan.volumes.on}};
   if (plan.volumes.on) {
     phases.start("volumes");
-    const std::string key = volume_key(scene, volume_settings);
-    const std::string previous = s.output + "/extinction.vdb";
-    bool reused = false;
-    if (std::filesystem::exists(previous)) {
-      try {
-        ExtinctionGrid old = ExtinctionGrid::read(previous);
-        if (old.metadata("geometry_key") == key) {
-          grid = std::move(old);
-          reused = true;
-        }
-      } catch (const InputError& e) {
-        std::fprintf(stderr, "walkrad: warning: %s: not reused (%s)\n", previous.c_str(), e.what());
-      }
-    }
-    if (!reused) grid = ExtinctionGrid::build(volume_clusters.boxes, ExtinctionGrid::choose_voxel_size(volume_clusters.boxes));
-    grid.write(out.path("extinction.vdb"), {{"geometry_key", key},
-                                           {"volume_clusters", std::to_string(volume_clusters.boxes.size())},
-                                           {"volume_polygons", std::to_string(volume_clusters.volume_polygons)},
-                                           {"min_polygons", std::to_string(volume_settings.min_polygons)},
-                                           {"feature_ratio", json(volume_settings.feature_ratio).dump()},
-                                           {"penumbra_ratio", json(volume_settings.penumbra_ratio).dump()}});
-    solid = std::make_unique<RayScene>(scene, volume_clusters.polygon_in_volume);
-    volume_visibility = {&volume_clusters, &grid, solid.get(), volume_settings.penumbra_ratio};
-    const ExtinctionGrid::Stats gs = grid.stats();
-    volumes_report = {{"on", true}, {"grid", reused ? "reused" : "built"}, {"file", "extinction.vdb"},
-                      {"clusters", volume_clusters.boxes.size()}, {"polygons", volume_clusters.volume_polygons},
-                      {"voxel_size_m", gs.voxel_size}, {"active_voxels", gs.active_voxels}, {"kappa_max", gs.kappa_max},
-                      {"min_polygons", volume_settings.min_polygons}, {"feature_ratio", volume_settings.feature_ratio},
-                      {"penumbra_ratio", volume_settings.penumbra_ratio}};
+    build_volumes(prepared, s.output, out, volumes);
   }
+  const Scene& scene = prepared.scene;
   MethodResult result = s.method == "classic"
-                                  ? run_classic(s, scene, rays, tree, bounds, plan, phases)
-                                  : run_hierarchical(s, scene, rays, tree, views, plan, twins,
-                                                       plan.volumes.on ? &volume_visibility : nullptr, checkpoint, phases);
+                            ? run_classic(s, scene, prepared.rays, prepared.tree, bounds, plan, phases)
+                            : run_hierarchical(s, scene, prepared.rays, prepared.tree, views, plan, prepared.twins,
+                                               plan.volumes.on ? &volumes.visibility : nullptr, checkpoint, phases);
 
   phases.start("exposure");
   uint64_t exposure_rays = 0;
-  double exposure = s.exposure;
-  if (exposure <= 0) {
-    exposure = auto_exposure(
-        views, rays, 64, result.radiosity_at,
-        [&](uint32_t poly) { return scene.materials[scene.polygons[poly].material].emits(); }, exposure_rays);
-    if (views.empty()) exposure = result.surface_exposure;
-  }
+  const double exposure = choose_exposure(s, prepared, views, result, exposure_rays);
 
   phases.start("mesh");
   json mesh_counts = json::object();
   const SurfaceMesh surface = result.mesh(exposure, mesh_counts, result.solver);
 
   phases.start("chunks");
-  ChunkCut cut = cut_into_chunks(surface, tree, s.chunk_triangles);
-  for (ChunkMesh& m : cut.meshes) optimize_chunk(m);
-  ChunkEncoding encoding;
-  if (s.compress) {
-    // One grid for every chunk (borders quantise alike). White on screen is B = π / exposure.
-    float radiosity_max = 0;
-    for (float b : surface.mesh.radiosity) radiosity_max = std::max(radiosity_max, b);
-    encoding = draco_encoding(surface.mesh.bounds(), s.position_tolerance * length(bounds.diagonal()), radiosity_max,
-                              s.radiosity_tolerance * kPi / exposure);
-  }
-  uint64_t chunk_rays = 0;
-  // Fine enough that a sliver of a chunk seen through a doorway is not missed (a runtime would leave it
-  // unloaded): up to 256² rays a view, about 16 million rays in all for long walkthroughs.
-  const int chunk_grid = std::clamp(int(std::sqrt(1.6e7 / double(std::max<size_t>(views.size(), 1)))), 32, 256);
-  const auto importance = chunk_importance(views, rays, cut.polygon_chunk, cut.meshes.size(), chunk_grid, chunk_rays);
-
-  phases.start("write");
-  Manifest manifest;
-  manifest.tool = std::string("walkrad ") + WALKRAD_VERSION;
-  manifest.scene_file = s.scene;
-  manifest.scene_hash = inputs.scene_hash;
-  manifest.bounds = surface.mesh.bounds();
-  manifest.exposure = exposure;
-  manifest.viewpoints = views;
-  manifest.settings = s.to_json();
-  manifest.effects = plan.to_json();
-  // Each chunk encoded (Draco) and written on its own, so in parallel: the same files, and the manifest
-  // lists them in order (5.3 s on one thread for the 150-room level's chunks).
-  manifest.chunks.resize(cut.meshes.size());
-  tbb::parallel_for(size_t(0), cut.meshes.size(), [&](size_t c) {
-    char name[32];
-    std::snprintf(name, sizeof name, "chunk-%04zu.glb", c);
-    ChunkInfo& chunk = manifest.chunks[c];
-    chunk.file = name;
-    chunk.bounds = cut.meshes[c].bounds();
-    chunk.triangles = cut.meshes[c].triangle_count();
-    chunk.bytes = write_chunk(out.path(chunk.file), cut.meshes[c], encoding);
-    chunk.importance = importance[c];
-  });
-  write_json(out.path("manifest.json"), manifest_to_json(manifest));
+  const WrittenChunks chunks = write_chunks(s, inputs, prepared, bounds, surface, exposure, out, phases);
   phases.finish();
 
   const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
   json counts = result.counts;
   counts.update(mesh_counts);
-  counts["input_polygons"] = input_polygons;
+  counts["input_polygons"] = prepared.input_polygons;
   counts["polygons"] = scene.polygons.size();
-  counts["contact_cuts"] = split_stats.cuts;
-  counts["covered_pieces"] = split_stats.covered;
+  counts["contact_cuts"] = prepared.split_stats.cuts;
+  counts["covered_pieces"] = prepared.split_stats.covered;
   counts["exposure_rays"] = exposure_rays;
   counts["triangles"] = surface.mesh.triangle_count();
-  counts["chunks"] = cut.meshes.size();
-  counts["chunk_importance_rays"] = chunk_rays;
+  counts["chunks"] = chunks.count;
+  counts["chunk_importance_rays"] = chunks.importance_rays;
   counts["viewpoints"] = views.size();
   counts["dropped_degenerate"] = input.dropped_degenerate;
-  // Under mpirun (walkrad/core/ranks.h): every rank's share of the divided work, and its balance: the
-  // busiest rank's compute time over the mean (1: even). A collective call, made by every rank here.
-  json per_rank = json::array();
-  double busiest = 0, mean = 0;
-  const std::vector<RankWork> work = all_rank_work();
-  for (size_t r = 0; r < work.size(); ++r) {
-    per_rank.push_back({{"rank", r}, {"items", work[r].items}, {"links", work[r].links}, {"rays", work[r].rays},
-                        {"compute_seconds", work[r].compute_seconds}, {"exchange_seconds", work[r].exchange_seconds},
-                        {"bytes_sent", work[r].bytes_sent}, {"peak_memory_mb", work[r].peak_memory_mb},
-                        {"links_held", work[r].links_held}, {"link_mb_peak", double(work[r].link_bytes_peak) / double(1 << 20)}});
-    busiest = std::max(busiest, work[r].compute_seconds);
-    mean += work[r].compute_seconds / double(work.size());
-  }
   json report = {
       {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
       {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
-      {"volumes", volumes_report},
-      {"ranks", {{"count", ranks().size}, {"balance", mean > 0 ? busiest / mean : 1.0},
-                 {"bytes_exchanged", ranks_bytes_exchanged()}, {"per_rank", per_rank}}},
+      {"volumes", volumes.report},  {"ranks", ranks_report()},
   };
   write_json(out.path("report.json"), report);
   out.commit();

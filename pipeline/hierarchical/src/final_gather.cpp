@@ -124,14 +124,11 @@ std::vector<std::pair<double, uint32_t>> DirectGather::bounds(const EmitterRange
   return out;
 }
 
-EmitterRanges DirectGather::strongest(const EmitterRanges& from, const Vec3* points, size_t count, const Vec3& n,
-                                      const Vec3& rho, double negligible) const {
-  const std::vector<std::pair<double, uint32_t>> bound = bounds(from, points, count, n, rho);
+EmitterRanges without_faintest(const std::vector<std::pair<double, uint32_t>>& bounds, double negligible) {
   size_t first = 0;
-  for (double sum = 0; first < bound.size() && sum + bound[first].first <= negligible; ++first) sum += bound[first].first;
-  if (first == 0) return from;
+  for (double sum = 0; first < bounds.size() && sum + bounds[first].first <= negligible; ++first) sum += bounds[first].first;
   std::vector<uint32_t> kept;
-  for (size_t i = first; i < bound.size(); ++i) kept.push_back(bound[i].second);
+  for (size_t i = first; i < bounds.size(); ++i) kept.push_back(bounds[i].second);
   std::sort(kept.begin(), kept.end());
   EmitterRanges out;
   for (uint32_t k : kept) {
@@ -139,6 +136,11 @@ EmitterRanges DirectGather::strongest(const EmitterRanges& from, const Vec3* poi
     else out.push_back({k, k + 1});
   }
   return out;
+}
+
+EmitterRanges DirectGather::strongest(const EmitterRanges& from, const Vec3* points, size_t count, const Vec3& n,
+                                      const Vec3& rho, double negligible) const {
+  return without_faintest(bounds(from, points, count, n, rho), negligible);
 }
 
 double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& from, const Emitter& e, int penumbra,

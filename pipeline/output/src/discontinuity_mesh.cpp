@@ -70,8 +70,8 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
   // near two rooms, has the occluders of the whole level between it and the lamps its doorways let in.
   std::vector<EmitterRanges> from(polygons);
   std::vector<Bounds> region(polygons);
-  std::vector<double> area(polygons, 0.0), count(polygons, 0.0), rho(polygons, 0.0);
-  std::vector<Vec3> faces_rho(polygons);
+  std::vector<double> area(polygons, 0.0), count(polygons, 0.0);
+  std::vector<Vec3> rho(polygons);  // the brightest seen face's
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!seen[f]) continue;
     const uint32_t p = faces[f].polygon;
@@ -79,14 +79,13 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
     region[p].extend(polygon_bounds(faces[f].shape));
     area[p] += faces[f].area;
     count[p] += 1;
-    if (luminance(faces[f].rho) > rho[p]) faces_rho[p] = faces[f].rho;
-    rho[p] = std::max(rho[p], luminance(faces[f].rho));
+    if (luminance(faces[f].rho) > luminance(rho[p])) rho[p] = faces[f].rho;
   }
   const double tol = 1e-6 * std::max(length(scene.bounds().diagonal()), 1e-30);
   std::vector<std::vector<Ranked>> found(polygons);
   std::vector<uint64_t> hidden(polygons, 0);
   tbb::parallel_for(size_t(0), polygons, [&](size_t p) {
-    if (from[p].empty() || rho[p] <= 0) return;
+    if (from[p].empty() || luminance(rho[p]) <= 0) return;
     const Polygon& receiver = scene.polygons[p];
     const Vec3 normal = polygon_normal(receiver);
     const Bounds& rb = region[p];
@@ -99,35 +98,31 @@ BoundarySelection select_boundaries(const Hierarchy& h, const DirectGather& dire
     // draw boundaries of no contrast, from a shaft across the level.
     std::array<Vec3, 9> points{rb.center()};
     for (int c = 0; c < 8; ++c) points[size_t(c + 1)] = {c & 1 ? rb.hi.x : rb.lo.x, c & 2 ? rb.hi.y : rb.lo.y, c & 4 ? rb.hi.z : rb.lo.z};
-    const auto bound = direct.bounds(from[p], points.data(), points.size(), normal, faces_rho[p]);
+    const auto bound = direct.bounds(from[p], points.data(), points.size(), normal, rho[p]);
     double total = 0;
     for (const auto& b : bound) total += b.first;
-    size_t faint = 0;
-    for (double sum = 0; faint < bound.size() && sum + bound[faint].first <= kFaintShare * total; ++faint) sum += bound[faint].first;
-    std::vector<uint32_t> lit;
-    for (size_t k = faint; k < bound.size(); ++k) lit.push_back(bound[k].second);
-    std::sort(lit.begin(), lit.end());
     std::vector<Polygon> occluders;
-    for (const uint32_t e : lit) {
-      const DirectGather::Emitter& emitter = direct.emitter(e);
-      if (emitter.polygon == p) continue;
-      occluders.clear();
-      for (uint32_t o : shaft_candidates(h.tree(), Shaft(polygon_bounds(emitter.shape), rb), emitter.polygon, uint32_t(p)))
-        occluders.push_back(scene.polygons[o]);
-      if (occluders.empty()) continue;
-      const Vec3 centre = polygon_centroid(emitter.shape);
-      for (const BoundarySegment& g : shadow_boundaries(emitter.shape, receiver, occluders, tol, &rb)) {
-        if (length(g.b - g.a) < shortest) continue;
-        if (rays && !changes_across(*rays, g, normal, emitter, centre)) {
-          ++hidden[p];
-          continue;
+    for (const auto& [lo, hi] : without_faintest(bound, kFaintShare * total))
+      for (uint32_t e = lo; e < hi; ++e) {
+        const DirectGather::Emitter& emitter = direct.emitter(e);
+        if (emitter.polygon == p) continue;
+        occluders.clear();
+        for (uint32_t o : shaft_candidates(h.tree(), Shaft(polygon_bounds(emitter.shape), rb), emitter.polygon, uint32_t(p)))
+          occluders.push_back(scene.polygons[o]);
+        if (occluders.empty()) continue;
+        const Vec3 centre = polygon_centroid(emitter.shape);
+        for (const BoundarySegment& g : shadow_boundaries(emitter.shape, receiver, occluders, tol, &rb)) {
+          if (length(g.b - g.a) < shortest) continue;
+          if (rays && !changes_across(*rays, g, normal, emitter, centre)) {
+            ++hidden[p];
+            continue;
+          }
+          const Vec3 middle = (g.a + g.b) * 0.5;
+          const double contrast = luminance(rho[p]) * luminance(emitter.emission) * point_to_polygon(middle, normal, emitter.shape);
+          if (contrast <= 0) continue;
+          found[p].push_back({contrast, uint32_t(p), uint32_t(found[p].size()), e, 1 + uint64_t(length(g.b - g.a) / side), g});
         }
-        const Vec3 middle = (g.a + g.b) * 0.5;
-        const double contrast = rho[p] * luminance(emitter.emission) * point_to_polygon(middle, normal, emitter.shape);
-        if (contrast <= 0) continue;
-        found[p].push_back({contrast, uint32_t(p), uint32_t(found[p].size()), e, 1 + uint64_t(length(g.b - g.a) / side), g});
       }
-    }
   });
   std::vector<Ranked> all;
   for (auto& list : found) all.insert(all.end(), list.begin(), list.end());

@@ -19,6 +19,60 @@ namespace walkrad {
 
 namespace {
 constexpr uint32_t kNoEmitter = UINT32_MAX;  // a cut that no emitter draws (a contact band)
+
+// Discontinuity meshing (discontinuity_mesh.h): the seen faces cut along the shadow boundaries of their
+// emitters, within as many expected crossings as an eighth of the faces (at least 1,024). The pieces
+// replace the faces, with their leaves and candidate emitters.
+void cut_along_boundaries(const Hierarchy& h, const DirectGather& direct, const PointSolution& point,
+                          const std::vector<uint8_t>& seen_face, MeshFaces& faces, std::vector<uint32_t>& leaf,
+                          std::vector<EmitterRanges>& candidates) {
+  BoundarySelection chosen =
+      select_boundaries(h, direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024), point.rays);
+  if (point.counts) {
+    point.counts->found = chosen.found;
+    point.counts->hidden = chosen.hidden;
+    point.counts->drawn = chosen.segments;
+  }
+  // And along the near-contact bands beside covers (contact_split.h), outside the budget: four
+  // segments a cover, wherever the walkthrough sees the polygon under it.
+  std::vector<uint8_t> seen_polygon(h.scene().polygons.size(), 0);
+  for (size_t f = 0; f < faces.size(); ++f) seen_polygon[faces[f].polygon] |= seen_face[f];
+  const std::vector<std::vector<ContactBand>> bands = contact_bands(h.scene(), h.tree(), seen_polygon);
+  uint64_t banded = 0;
+  for (size_t p = 0; p < bands.size(); ++p)
+    for (const ContactBand& b : bands[p]) {
+      chosen.by_polygon[p].push_back({b.a, b.b, b.a});
+      chosen.emitter[p].push_back(kNoEmitter);
+      ++banded;
+    }
+  if (point.counts) point.counts->contact_bands = banded;
+  if (chosen.segments + banded) {
+    // Four times the chunks' position error (--position-tolerance, 1e-5 of the diagonal by
+    // default; the mesher welds within 1e-6): a vertex and an edge each move by up to √3 of it, so
+    // anything closer could meet in the chunks.
+    const double snap = 4 * std::max(point.position_error, 1e-6) * length(h.scene().bounds().diagonal());
+    CutFaces cut = cut_faces(faces, chosen.by_polygon, snap);
+    if (point.counts)
+      for (const auto& applied : cut.applied) point.counts->faces_cut += !applied.empty();
+    std::vector<uint32_t> cut_leaf(cut.from.size());
+    std::vector<EmitterRanges> cut_candidates(cut.from.size());
+    tbb::parallel_for(size_t(0), cut.from.size(), [&](size_t k) {
+      cut_leaf[k] = leaf[cut.from[k]];
+      // A piece gathers the emitters whose boundaries cut its face too: a leaf the solution found
+      // wholly hidden from the lamp (no link to it) lies partly in its penumbra once cut there.
+      const uint32_t f = cut.from[k];
+      cut_candidates[k] = candidates[f];
+      for (uint32_t g : cut.applied[f]) {
+        const uint32_t e = chosen.emitter[faces[f].polygon][g];
+        if (e != kNoEmitter) merge_ranges(cut_candidates[k], {{e, e + 1}});
+      }
+    });
+    faces.swap(cut.faces);
+    leaf.swap(cut_leaf);
+    candidates.swap(cut_candidates);
+  }
+}
+
 }  // namespace
 
 SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolution& point) {
@@ -69,55 +123,8 @@ SurfaceMesh mesh_hierarchy(const Hierarchy& h, double exposure, const PointSolut
     for (size_t f = 0; f < faces.size(); ++f)
       if (seen_face[f]) seen_leaves.push_back(leaf[f]);
     clusters.resolve_close_sources(seen_leaves, point.twins);
-    // Discontinuity meshing (discontinuity_mesh.h): the seen faces cut along the shadow boundaries of
-    // their emitters, within as many expected crossings as an eighth of the faces (at least 1,024).
-    if (point.discontinuities && direct->emitter_count()) {
-      BoundarySelection chosen =
-          select_boundaries(h, *direct, faces, seen_face, candidates, std::max<uint64_t>(faces.size() / 8, 1024), point.rays);
-      if (point.counts) {
-        point.counts->found = chosen.found;
-        point.counts->hidden = chosen.hidden;
-        point.counts->drawn = chosen.segments;
-      }
-      // And along the near-contact bands beside covers (contact_split.h), outside the budget: four
-      // segments a cover, wherever the walkthrough sees the polygon under it.
-      std::vector<uint8_t> seen_polygon(h.scene().polygons.size(), 0);
-      for (size_t f = 0; f < faces.size(); ++f) seen_polygon[faces[f].polygon] |= seen_face[f];
-      const std::vector<std::vector<ContactBand>> bands = contact_bands(h.scene(), h.tree(), seen_polygon);
-      uint64_t banded = 0;
-      for (size_t p = 0; p < bands.size(); ++p)
-        for (const ContactBand& b : bands[p]) {
-          chosen.by_polygon[p].push_back({b.a, b.b, b.a});
-          chosen.emitter[p].push_back(kNoEmitter);
-          ++banded;
-        }
-      if (point.counts) point.counts->contact_bands = banded;
-      if (chosen.segments + banded) {
-        // Four times the chunks' position error (--position-tolerance, 1e-5 of the diagonal by
-        // default; the mesher welds within 1e-6): a vertex and an edge each move by up to √3 of it, so
-        // anything closer could meet in the chunks.
-        const double snap = 4 * std::max(point.position_error, 1e-6) * length(h.scene().bounds().diagonal());
-        CutFaces cut = cut_faces(faces, chosen.by_polygon, snap);
-        if (point.counts)
-          for (const auto& applied : cut.applied) point.counts->faces_cut += !applied.empty();
-        std::vector<uint32_t> cut_leaf(cut.from.size());
-        std::vector<EmitterRanges> cut_candidates(cut.from.size());
-        tbb::parallel_for(size_t(0), cut.from.size(), [&](size_t k) {
-          cut_leaf[k] = leaf[cut.from[k]];
-          // A piece gathers the emitters whose boundaries cut its face too: a leaf the solution found
-          // wholly hidden from the lamp (no link to it) lies partly in its penumbra once cut there.
-          const uint32_t f = cut.from[k];
-          cut_candidates[k] = candidates[f];
-          for (uint32_t g : cut.applied[f]) {
-            const uint32_t e = chosen.emitter[faces[f].polygon][g];
-            if (e != kNoEmitter) merge_ranges(cut_candidates[k], {{e, e + 1}});
-          }
-        });
-        faces.swap(cut.faces);
-        leaf.swap(cut_leaf);
-        candidates.swap(cut_candidates);
-      }
-    }
+    if (point.discontinuities && direct->emitter_count())
+      cut_along_boundaries(h, *direct, point, seen_face, faces, leaf, candidates);
     gather.seen = seen;
     gather.direct = [&](const Vec3& x, const Vec3& normal, const uint32_t* around, size_t count) {
       EmitterRanges from = candidates[around[0]];

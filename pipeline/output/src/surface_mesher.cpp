@@ -42,27 +42,18 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
   return i;
 }
 
-}  // namespace
-
-SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather,
-                       const FaceRanks& face_rank, const std::function<void()>& read) {
-  SurfaceMesh surface;
-  if (faces.empty()) return surface;
-  Bounds bounds;
-  double edge_sum = 0;
-  uint32_t polygons = 0;
-  for (const MeshFace& f : faces) {
-    for (int k = 0; k < f.shape.count; ++k) {
-      bounds.extend(f.shape.v[k]);
-      edge_sum += length(f.shape.v[(k + 1) % f.shape.count] - f.shape.v[k]);
-    }
-    polygons = std::max(polygons, f.polygon + 1);
-  }
-  // Positions closer than weld_tol are one vertex; a vertex closer than weld_tol to an edge lies on it.
-  const double weld_tol = 1e-6 * std::max(length(bounds.diagonal()), 1e-30);
-
-  // 1. Weld the corners (first come, first numbered: deterministic; corner_weld.h).
+// Steps 1 and 2: every face's boundary as welded points, its corners with the vertices lying inside its
+// edges, in order. Face i's: boundary[begin[i], begin[i + 1]).
+struct FaceBoundaries {
   std::vector<Vec3> points;
+  GrowingHugeVector<uint32_t> boundary, begin{0};  // grown: pages as they are used
+  uint32_t size(size_t i) const { return begin[i + 1] - begin[i]; }
+};
+
+FaceBoundaries face_boundaries(const MeshFaces& faces, double weld_tol, double cell) {
+  FaceBoundaries fb;
+  std::vector<Vec3>& points = fb.points;
+  // 1. Weld the corners (first come, first numbered: deterministic; corner_weld.h).
   HugeVector<std::array<uint32_t, 4>> corner(faces.size());
   {
     std::vector<Vec3> corners;
@@ -76,10 +67,8 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
     points = std::move(welded.points);
   }
 
-  // 2. Each face's boundary: its corners with the vertices lying inside its edges, in order. Edges are
-  // walked in steps of the grid's cell; the cells around the steps, each once, hold the candidates.
-  // Faces in parallel (the grid only read), joined in face order.
-  const double cell = std::max(edge_sum / double(std::max<size_t>(faces.size(), 1)) / 4.0, 4 * weld_tol);
+  // 2. Edges are walked in steps of the grid's cell; the cells around the steps, each once, hold the
+  // candidates. Faces in parallel (the grid only read), joined in face order.
   std::optional<CellIndex> grid(std::in_place, points, cell);
   std::vector<std::vector<uint32_t>> face_boundary(faces.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, faces.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
@@ -125,14 +114,17 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
     }
   });
   grid.reset();
-  GrowingHugeVector<uint32_t> boundary, boundary_begin{0};  // grown: pages as they are used
   for (std::vector<uint32_t>& b : face_boundary) {
-    boundary.insert(boundary.end(), b.begin(), b.end());
-    boundary_begin.push_back(uint32_t(boundary.size()));
+    fb.boundary.insert(fb.boundary.end(), b.begin(), b.end());
+    fb.begin.push_back(uint32_t(fb.boundary.size()));
     std::vector<uint32_t>().swap(b);
   }
+  return fb;
+}
 
-  // 3. Smoothing groups: polygons of one material facing the same way that share a boundary vertex.
+// 3. Smoothing groups: polygons of one material facing the same way that share a boundary vertex.
+// By polygon, the group's first polygon.
+std::vector<uint32_t> smoothing_groups(const MeshFaces& faces, const FaceBoundaries& fb, uint32_t polygons) {
   std::vector<Vec3> polygon_normal(polygons);
   std::vector<uint32_t> polygon_material(polygons, 0), group(polygons);
   std::iota(group.begin(), group.end(), 0u);
@@ -140,181 +132,216 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
     polygon_normal[f.polygon] = f.normal;
     polygon_material[f.polygon] = f.shape.material;
   }
-  {
-    std::vector<std::pair<uint32_t, uint32_t>> touch;  // (vertex, polygon)
-    touch.reserve(boundary.size());
-    for (size_t i = 0; i < faces.size(); ++i)
-      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) touch.push_back({boundary[j], faces[i].polygon});
-    tbb::parallel_sort(touch.begin(), touch.end());  // a total order: the same whatever the threads
-    touch.erase(std::unique(touch.begin(), touch.end()), touch.end());
-    for (size_t s = 0; s < touch.size();) {
-      size_t e = s;
-      while (e < touch.size() && touch[e].first == touch[s].first) ++e;
-      for (size_t x = s; x < e; ++x)
-        for (size_t y = x + 1; y < e; ++y) {
-          const uint32_t px = touch[x].second, py = touch[y].second;
-          if (polygon_material[px] == polygon_material[py] && dot(polygon_normal[px], polygon_normal[py]) > 1 - 1e-9)
-            group[find_root(group, px)] = find_root(group, py);
-        }
-      s = e;
-    }
-    for (uint32_t pgn = 0; pgn < polygons; ++pgn) group[pgn] = find_root(group, pgn);
+  std::vector<std::pair<uint32_t, uint32_t>> touch;  // (vertex, polygon)
+  touch.reserve(fb.boundary.size());
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) touch.push_back({fb.boundary[j], faces[i].polygon});
+  tbb::parallel_sort(touch.begin(), touch.end());  // a total order: the same whatever the threads
+  touch.erase(std::unique(touch.begin(), touch.end()), touch.end());
+  for (size_t s = 0; s < touch.size();) {
+    size_t e = s;
+    while (e < touch.size() && touch[e].first == touch[s].first) ++e;
+    for (size_t x = s; x < e; ++x)
+      for (size_t y = x + 1; y < e; ++y) {
+        const uint32_t px = touch[x].second, py = touch[y].second;
+        if (polygon_material[px] == polygon_material[py] && dot(polygon_normal[px], polygon_normal[py]) > 1 - 1e-9)
+          group[find_root(group, px)] = find_root(group, py);
+      }
+    s = e;
   }
+  for (uint32_t pgn = 0; pgn < polygons; ++pgn) group[pgn] = find_root(group, pgn);
+  return group;
+}
 
-  // 4. Vertex radiosity: area-weighted over the faces of one group that have the vertex on their boundary,
-  // of each face's radiosity or of the solution at the vertex seen from each face (a point kInward of
-  // the way in towards the face's centre: on a neighbour's plane the contour formula says nothing).
-  // A gathered vertex is read once, by the first face that has it, kInward of the way towards its
-  // faces' mean centre (off a crease's neighbouring plane; on the vertex where faces surround it):
-  // there every element source is taken at the point (point_radiosity.h), so its faces' readings
-  // differ only by their leaves' coarser parts, and each reading costs a whole evaluation. One reading
-  // against one a face, the Cornell box (medium): mesh phase 0.79 s against 1.20 s, 1.033 against
-  // 1.031% weighted RMS; lamp-room 1.252 against 1.253%; test ContactShadow's floor beside the box
-  // 2.23 against 2.49%.
-  // (point, group) → accumulator: each point's slots in a list (a point has one or a few groups).
-  // A group's faces on either side of a wall standing on them take a vertex each (vertex_sides.h).
-  GrowingHugeVector<uint32_t> slot_point, slot_group, slot_next;  // grown: pages as they are used
+// The output's vertices: a (point, group) pair, a slot, for each point's groups (a point has one or a
+// few). A group's faces on either side of a wall standing on them take a vertex each (vertex_sides.h).
+struct VertexSlots {
+  GrowingHugeVector<uint32_t> point, group, next;  // by slot; next: the point's next slot
+  HugeVector<uint32_t> of;                         // by boundary entry: its slot
+  HugeVector<uint32_t> first;                      // by point: its first slot
+  size_t size() const { return point.size(); }
+};
+
+VertexSlots vertex_slots(const MeshFaces& faces, const FaceBoundaries& fb, const std::vector<uint32_t>& group, double weld_tol) {
+  VertexSlots vs;
+  vs.of.resize(fb.boundary.size());
+  vs.first.assign(fb.points.size(), UINT32_MAX);
   GrowingHugeVector<uint8_t> slot_side;
-  HugeVector<uint32_t> face_slots(boundary.size());
-  HugeVector<uint32_t> first_slot(points.size(), UINT32_MAX);
-  {
-  const std::vector<uint8_t> side = vertex_sides(faces, points, boundary.data(), boundary_begin.data(), group, weld_tol);
+  const std::vector<uint8_t> side = vertex_sides(faces, fb.points, fb.boundary.data(), fb.begin.data(), group, weld_tol);
   for (size_t i = 0; i < faces.size(); ++i) {
     const uint32_t g = group[faces[i].polygon];
-    for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-      uint32_t s = first_slot[boundary[j]];
-      while (s != UINT32_MAX && (slot_group[s] != g || slot_side[s] != side[j])) s = slot_next[s];
+    for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) {
+      uint32_t s = vs.first[fb.boundary[j]];
+      while (s != UINT32_MAX && (vs.group[s] != g || slot_side[s] != side[j])) s = vs.next[s];
       if (s == UINT32_MAX) {
-        s = uint32_t(slot_point.size());
-        slot_point.push_back(boundary[j]);
-        slot_group.push_back(g);
+        s = uint32_t(vs.point.size());
+        vs.point.push_back(fb.boundary[j]);
+        vs.group.push_back(g);
         slot_side.push_back(side[j]);
-        slot_next.push_back(first_slot[boundary[j]]);
-        first_slot[boundary[j]] = s;
+        vs.next.push_back(vs.first[fb.boundary[j]]);
+        vs.first[fb.boundary[j]] = s;
       }
-      face_slots[j] = s;
+      vs.of[j] = s;
     }
   }
+  return vs;
+}
+
+// Step 4's output: each slot's radiosity as the area-weighted sum and its weight, and each fanned face's
+// centre and its value.
+struct VertexReadings {
+  HugeVector<Vec3> sum;
+  HugeVector<double> weight;
+  HugeVector<Vec3> centre, centre_value;
+};
+
+// The solution read at the corners (value, by boundary entry) and the fanned faces' centres
+// (r.centre_value): where the gather reads a slot once, only its reader's corner. Each face is read by
+// one rank, in parallel, and what the ranks read is shared (ranks.h).
+void read_corners(const MeshFaces& faces, const FaceBoundaries& fb, const VertexSlots& vs, const FaceRadiosity& at,
+                  const VertexGather& gather, const FaceRanks& face_rank, const HugeVector<uint8_t>& face_seen,
+                  const HugeVector<uint8_t>& gathered, const HugeVector<uint32_t>& reader, const HugeVector<Vec3>& toward,
+                  HugeVector<Vec3>& value, VertexReadings& r) {
+  const bool gathering = !face_seen.empty();
+  // T-vertices on its edges: the face is fanned from its centre (5.), which takes a value too.
+  auto fanned = [&](size_t i) { return fb.size(i) != uint32_t(faces[i].shape.count); };
+  auto evaluate = [&](size_t i) {
+    const Vec3& c = r.centre[i];
+    if (fanned(i)) {
+      const bool seen = gathering && face_seen[i];
+      const uint32_t self = uint32_t(i);
+      r.centre_value[i] = at(i, c, seen);
+      if (seen) r.centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
+    }
+    for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) {
+      const uint32_t s = vs.of[j];
+      const Vec3& p = fb.points[fb.boundary[j]];
+      if (!gathered[s]) value[j] = at(i, p + (c - p) * kInward, false);
+      else if (reader[s] == j) value[j] = at(i, p + (toward[s] - p) * kInward, true);
+    }
+  };
+  if (face_rank && ranks().size > 1) {
+    // Each rank reads its own faces (face_rank) and shares what it read: a face's values, and its
+    // corners' (those no face reads stay zero everywhere).
+    std::vector<size_t> mine;
+    for (size_t i = 0; i < faces.size(); ++i)
+      if (face_rank(i) == ranks().rank) mine.push_back(i);
+    const auto start = std::chrono::steady_clock::now();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mine.size(), 64), [&](const tbb::blocked_range<size_t>& br) {
+      for (size_t k = br.begin(); k != br.end(); ++k) evaluate(mine[k]);
+    });
+    rank_work().items += mine.size();
+    rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    share_owned(r.centre_value, [&](size_t i) { return fanned(i) ? face_rank(i) : -1; });
+    HugeVector<int> corner_rank(fb.boundary.size(), -1);
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j)
+        if (!gathered[vs.of[j]] || reader[vs.of[j]] == j) corner_rank[j] = face_rank(i);
+    share_owned(value, [&](size_t j) { return corner_rank[j]; });
+  } else {
+    // Under mpirun each rank evaluates one block of the faces (by their corners) and shares it (ranks.h).
+    const std::vector<size_t> blocks = run_my_block(
+        faces.size(), [&](size_t i) { return 1.0 + double(fb.size(i)); },
+        [&](size_t first, size_t last) {
+          tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& br) {
+            for (size_t i = br.begin(); i != br.end(); ++i) evaluate(i);
+          });
+        });
+    share_blocks(r.centre_value, blocks);
+    std::vector<size_t> corner_blocks;
+    for (size_t b : blocks) corner_blocks.push_back(fb.begin[b]);
+    share_blocks(value, corner_blocks);
   }
-  GrowingHugeVector<uint8_t>().swap(slot_side);
-  const size_t slots = slot_point.size();
+}
+
+// Each gathered slot's direct light (gather.direct), once, from its faces in face order: added to its
+// sum times its faces' area-summed ρ.
+void add_gathered_direct(const MeshFaces& faces, const FaceBoundaries& fb, const VertexSlots& vs, const VertexGather& gather,
+                         const HugeVector<uint8_t>& gathered, const HugeVector<Vec3>& rho, HugeVector<Vec3>& sum) {
+  const size_t slots = vs.size();
+  HugeVector<uint32_t> begin(slots + 1, 0), members(fb.boundary.size());
+  for (uint32_t j = 0; j < fb.boundary.size(); ++j) ++begin[vs.of[j] + 1];
+  for (size_t s = 0; s < slots; ++s) begin[s + 1] += begin[s];
+  HugeVector<uint32_t> fill(begin.begin(), begin.end() - 1);
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) members[fill[vs.of[j]]++] = uint32_t(i);
+  HugeVector<Vec3> direct(slots);
+  const std::vector<size_t> blocks =
+      run_my_block(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; }, [&](size_t first, size_t last) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
+          for (size_t s = r.begin(); s != r.end(); ++s) {
+            if (!gathered[s]) continue;
+            const uint32_t* f = members.data() + begin[s];
+            direct[s] = gather.direct(fb.points[vs.point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
+          }
+        });
+      });
+  share_blocks(direct, blocks);
+  for (size_t s = 0; s < slots; ++s)
+    if (gathered[s]) sum[s] += mul(rho[s], direct[s]);  // ρ summed by area as sum is: both divided by weight below
+}
+
+// 4. Vertex radiosity: area-weighted over the faces of one group that have the vertex on their boundary,
+// of each face's radiosity or of the solution at the vertex seen from each face (a point kInward of
+// the way in towards the face's centre: on a neighbour's plane the contour formula says nothing).
+// A gathered vertex is read once, by the first face that has it, kInward of the way towards its
+// faces' mean centre (off a crease's neighbouring plane; on the vertex where faces surround it):
+// there every element source is taken at the point (point_radiosity.h), so its faces' readings
+// differ only by their leaves' coarser parts, and each reading costs a whole evaluation. One reading
+// against one a face, the Cornell box (medium): mesh phase 0.79 s against 1.20 s, 1.033 against
+// 1.031% weighted RMS; lamp-room 1.252 against 1.253%; test ContactShadow's floor beside the box
+// 2.23 against 2.49%.
+VertexReadings read_vertices(const MeshFaces& faces, const FaceBoundaries& fb, const VertexSlots& vs, const FaceRadiosity& at,
+                             const VertexGather& gather, const FaceRanks& face_rank, const std::function<void()>& read) {
+  const size_t slots = vs.size();
   const bool gathering = at && gather.seen && gather.direct;
   HugeVector<uint8_t> face_seen(gathering ? faces.size() : 0), gathered(slots, 0);
   if (gathering)
     for (size_t i = 0; i < faces.size(); ++i)
       if ((face_seen[i] = gather.seen(i)))
-        for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) gathered[face_slots[j]] = 1;
-  HugeVector<Vec3> value(boundary.size()), centre_value(faces.size()), centre(faces.size());
-  for (size_t i = 0; i < faces.size(); ++i) centre[i] = polygon_centroid(faces[i].shape);
+        for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) gathered[vs.of[j]] = 1;
+  VertexReadings r;
+  HugeVector<Vec3> value(fb.boundary.size());
+  r.centre_value.resize(faces.size());
+  r.centre.resize(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) r.centre[i] = polygon_centroid(faces[i].shape);
   HugeVector<uint32_t> reader(gathering ? slots : 0, UINT32_MAX);  // a gathered slot's reading: its first face's corner
   HugeVector<Vec3> toward(gathering ? slots : 0);                  // and its faces' mean centre
   if (gathering) {
     HugeVector<uint32_t> around(slots, 0);
     for (size_t i = 0; i < faces.size(); ++i) {
-      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-        const uint32_t s = face_slots[j];
+      for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) {
+        const uint32_t s = vs.of[j];
         if (reader[s] == UINT32_MAX) reader[s] = j;
-        toward[s] += centre[i];
+        toward[s] += r.centre[i];
         ++around[s];
       }
     }
     for (size_t s = 0; s < slots; ++s) toward[s] = toward[s] / double(std::max(around[s], 1u));
   }
-  if (at) {
-    // T-vertices on its edges: the face is fanned from its centre (5.), which takes a value too.
-    auto fanned = [&](size_t i) { return boundary_begin[i + 1] - boundary_begin[i] != uint32_t(faces[i].shape.count); };
-    auto evaluate = [&](size_t i) {
-      const Vec3& c = centre[i];
-      if (fanned(i)) {
-        const bool seen = gathering && face_seen[i];
-        const uint32_t self = uint32_t(i);
-        centre_value[i] = at(i, c, seen);
-        if (seen) centre_value[i] += mul(faces[i].rho, gather.direct(c, faces[i].normal, &self, 1));
-      }
-      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-        const uint32_t s = face_slots[j];
-        const Vec3& p = points[boundary[j]];
-        if (!gathered[s]) value[j] = at(i, p + (c - p) * kInward, false);
-        else if (reader[s] == j) value[j] = at(i, p + (toward[s] - p) * kInward, true);
-      }
-    };
-    if (face_rank && ranks().size > 1) {
-      // Each rank reads its own faces (face_rank) and shares what it read: a face's values, and its
-      // corners' (those no face reads stay zero everywhere).
-      std::vector<size_t> mine;
-      for (size_t i = 0; i < faces.size(); ++i)
-        if (face_rank(i) == ranks().rank) mine.push_back(i);
-      const auto start = std::chrono::steady_clock::now();
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, mine.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t k = r.begin(); k != r.end(); ++k) evaluate(mine[k]);
-      });
-      rank_work().items += mine.size();
-      rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      share_owned(centre_value, [&](size_t i) { return fanned(i) ? face_rank(i) : -1; });
-      HugeVector<int> corner_rank(boundary.size(), -1);
-      for (size_t i = 0; i < faces.size(); ++i)
-        for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j)
-          if (!gathered[face_slots[j]] || reader[face_slots[j]] == j) corner_rank[j] = face_rank(i);
-      share_owned(value, [&](size_t j) { return corner_rank[j]; });
-    } else {
-      // Under mpirun each rank evaluates one block of the faces (by their corners) and shares it (ranks.h).
-      const std::vector<size_t> blocks = run_my_block(
-          faces.size(), [&](size_t i) { return 1.0 + double(boundary_begin[i + 1] - boundary_begin[i]); },
-          [&](size_t first, size_t last) {
-            tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
-              for (size_t i = r.begin(); i != r.end(); ++i) evaluate(i);
-            });
-          });
-      share_blocks(centre_value, blocks);
-      std::vector<size_t> corner_blocks;
-      for (size_t b : blocks) corner_blocks.push_back(boundary_begin[b]);
-      share_blocks(value, corner_blocks);
-    }
-  }
+  if (at) read_corners(faces, fb, vs, at, gather, face_rank, face_seen, gathered, reader, toward, value, r);
   if (read) read();
-  HugeVector<Vec3> sum(slots), rho(slots);
-  HugeVector<double> weight(slots, 0.0);
+  HugeVector<Vec3> rho(slots);
+  r.sum.resize(slots);
+  r.weight.assign(slots, 0.0);
   for (size_t i = 0; i < faces.size(); ++i)
-    for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) {
-      const uint32_t s = face_slots[j];
-      sum[s] += (!at ? faces[i].radiosity : gathered[s] ? value[reader[s]] : value[j]) * faces[i].area;
+    for (uint32_t j = fb.begin[i]; j < fb.begin[i + 1]; ++j) {
+      const uint32_t s = vs.of[j];
+      r.sum[s] += (!at ? faces[i].radiosity : gathered[s] ? value[reader[s]] : value[j]) * faces[i].area;
       rho[s] += faces[i].rho * faces[i].area;
-      weight[s] += faces[i].area;
+      r.weight[s] += faces[i].area;
     }
-  if (gathering) {
-    // Each gathered vertex's faces (in face order), then its direct light, once.
-    HugeVector<uint32_t> begin(slots + 1, 0), members(boundary.size());
-    for (uint32_t j = 0; j < boundary.size(); ++j) ++begin[face_slots[j] + 1];
-    for (size_t s = 0; s < slots; ++s) begin[s + 1] += begin[s];
-    HugeVector<uint32_t> fill(begin.begin(), begin.end() - 1);
-    for (size_t i = 0; i < faces.size(); ++i)
-      for (uint32_t j = boundary_begin[i]; j < boundary_begin[i + 1]; ++j) members[fill[face_slots[j]]++] = uint32_t(i);
-    HugeVector<Vec3> direct(slots);
-    const std::vector<size_t> blocks =
-        run_my_block(slots, [&](size_t s) { return gathered[s] ? 1.0 : 0.01; }, [&](size_t first, size_t last) {
-          tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 64), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t s = r.begin(); s != r.end(); ++s) {
-              if (!gathered[s]) continue;
-              const uint32_t* f = members.data() + begin[s];
-              direct[s] = gather.direct(points[slot_point[s]], faces[f[0]].normal, f, begin[s + 1] - begin[s]);
-            }
-          });
-        });
-    share_blocks(direct, blocks);
-    for (size_t s = 0; s < slots; ++s)
-      if (gathered[s]) sum[s] += mul(rho[s], direct[s]);  // ρ summed by area as sum is: both divided by weight below
-  }
+  if (gathering) add_gathered_direct(faces, fb, vs, gather, gathered, rho, r.sum);
+  return r;
+}
 
-  // 5. Output: vertices in order of first use, then each face's triangles (a fan from its centre
-  // when T-vertices lie on its edges). The readings are spent, and the arrays are made to their
-  // sizes, not grown by doubling (with the frees, the 150-room level's peak 4,298 -> 4,195 MiB).
-  for (HugeVector<Vec3>* spent : {&value, &rho, &toward}) HugeVector<Vec3>().swap(*spent);
-  for (HugeVector<uint32_t>* spent : {&reader, &first_slot}) HugeVector<uint32_t>().swap(*spent);
-  for (GrowingHugeVector<uint32_t>* spent : {&slot_group, &slot_next}) GrowingHugeVector<uint32_t>().swap(*spent);
-  HugeVector<std::array<uint32_t, 4>>().swap(corner);
-  size_t vertices = slots, triangles = 0;
+// 5. Output: vertices in order of first use, then each face's triangles (a fan from its centre when
+// T-vertices lie on its edges). The arrays are made to their sizes, not grown by doubling.
+void write_vertices(const MeshFaces& faces, const FaceBoundaries& fb, const VertexSlots& vs, const VertexReadings& r,
+                    bool read_at_points, double exposure, SurfaceMesh& surface) {
+  size_t vertices = vs.size(), triangles = 0;
   for (size_t i = 0; i < faces.size(); ++i) {
-    const uint32_t count = boundary_begin[i + 1] - boundary_begin[i];
+    const uint32_t count = fb.size(i);
     const bool fan = count != uint32_t(faces[i].shape.count);
     vertices += fan;
     triangles += fan ? count : count - 2;
@@ -323,29 +350,58 @@ SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadios
   for (std::vector<float>* a : {&mesh.positions, &mesh.normals, &mesh.radiosity, &mesh.colors}) a->reserve(3 * vertices);
   mesh.indices.reserve(3 * triangles);
   surface.triangle_polygon.reserve(triangles);
-  HugeVector<uint32_t> out_index(sum.size(), UINT32_MAX);
+  HugeVector<uint32_t> out_index(r.sum.size(), UINT32_MAX);
   auto vertex = [&](uint32_t s, const Vec3& normal) {
     if (out_index[s] == UINT32_MAX) {
       out_index[s] = uint32_t(mesh.vertex_count());
-      append_vertex(mesh, points[slot_point[s]], normal, sum[s] / weight[s], exposure);
+      append_vertex(mesh, fb.points[vs.point[s]], normal, r.sum[s] / r.weight[s], exposure);
     }
     return out_index[s];
   };
   for (size_t i = 0; i < faces.size(); ++i) {
     const MeshFace& f = faces[i];
-    const uint32_t begin = boundary_begin[i], count = boundary_begin[i + 1] - begin;
+    const uint32_t begin = fb.begin[i], count = fb.size(i);
     std::vector<uint32_t> v(count);
-    for (uint32_t j = 0; j < count; ++j) v[j] = vertex(face_slots[begin + j], f.normal);
+    for (uint32_t j = 0; j < count; ++j) v[j] = vertex(vs.of[begin + j], f.normal);
     if (count == uint32_t(f.shape.count)) {
       mesh.indices.insert(mesh.indices.end(), {v[0], v[1], v[2]});
       if (count == 4) mesh.indices.insert(mesh.indices.end(), {v[0], v[2], v[3]});
     } else {
       const uint32_t c = uint32_t(mesh.vertex_count());
-      append_vertex(mesh, centre[i], f.normal, at ? centre_value[i] : f.radiosity, exposure);
+      append_vertex(mesh, r.centre[i], f.normal, read_at_points ? r.centre_value[i] : f.radiosity, exposure);
       for (uint32_t j = 0; j < count; ++j) mesh.indices.insert(mesh.indices.end(), {c, v[j], v[(j + 1) % count]});
     }
     surface.triangle_polygon.resize(mesh.triangle_count(), f.polygon);
   }
+}
+
+}  // namespace
+
+SurfaceMesh mesh_faces(const MeshFaces& faces, double exposure, const FaceRadiosity& at, const VertexGather& gather,
+                       const FaceRanks& face_rank, const std::function<void()>& read) {
+  SurfaceMesh surface;
+  if (faces.empty()) return surface;
+  Bounds bounds;
+  double edge_sum = 0;
+  uint32_t polygons = 0;
+  for (const MeshFace& f : faces) {
+    for (int k = 0; k < f.shape.count; ++k) {
+      bounds.extend(f.shape.v[k]);
+      edge_sum += length(f.shape.v[(k + 1) % f.shape.count] - f.shape.v[k]);
+    }
+    polygons = std::max(polygons, f.polygon + 1);
+  }
+  // Positions closer than weld_tol are one vertex; a vertex closer than weld_tol to an edge lies on it.
+  const double weld_tol = 1e-6 * std::max(length(bounds.diagonal()), 1e-30);
+  const double cell = std::max(edge_sum / double(std::max<size_t>(faces.size(), 1)) / 4.0, 4 * weld_tol);
+  const FaceBoundaries fb = face_boundaries(faces, weld_tol, cell);
+  VertexSlots slots = vertex_slots(faces, fb, smoothing_groups(faces, fb, polygons), weld_tol);
+  const VertexReadings readings = read_vertices(faces, fb, slots, at, gather, face_rank, read);
+  // What the output does not read is freed first (with the readings', the 150-room level's peak
+  // 4,298 -> 4,195 MiB).
+  HugeVector<uint32_t>().swap(slots.first);
+  for (GrowingHugeVector<uint32_t>* spent : {&slots.group, &slots.next}) GrowingHugeVector<uint32_t>().swap(*spent);
+  write_vertices(faces, fb, slots, readings, bool(at), exposure, surface);
   return surface;
 }
 

@@ -156,6 +156,91 @@ bool inside(const Loop& footprint, const Vec3& normal, const Vec3& x) {
   return true;
 }
 
+// One polygon's pieces (empty: the polygon whole), whether each lies under a cover, and the cuts applied.
+struct Split {
+  std::vector<Loop> pieces;
+  std::vector<uint8_t> under;
+  uint64_t applied = 0;
+};
+struct Scratch {
+  std::vector<Cut> cuts, unique;
+  std::vector<Loop> covers, next;
+  std::vector<Standing> standing;
+  std::vector<int32_t> stack;
+};
+
+// Polygon qi cut along the contacts and covers of the polygons near it (its own affair: any thread).
+void split_polygon(const Scene& scene, const ClusterTree& tree, uint32_t qi, double tol, Scratch& w, Split& out_q) {
+  std::vector<Cut>& cuts = w.cuts;
+  std::vector<Loop>& covers = w.covers;
+  std::vector<Standing>& standing = w.standing;
+  const Polygon& q = scene.polygons[qi];
+  const Vec3 qn = polygon_normal(q);
+  const Bounds qb = reach_of(q, tol);
+  cuts.clear();
+  covers.clear();
+  standing.clear();
+  for_each_near(tree, scene, qi, qb, w.stack, [&](const Polygon& p) {
+    contact_cuts(q, qn, p, tol, cuts, &standing);
+    Loop footprint = cover_footprint(q, qn, p, tol);
+    if (!footprint.empty()) {
+      cover_cuts(q, qn, footprint, tol, cuts);
+      covers.push_back(std::move(footprint));
+    }
+  });
+  if (cuts.empty() && covers.empty()) return;
+  // One cut per line (collinear edges: a row of books, two boxes side by side), the most contact
+  // along it first: a row of books' fronts (a metre of contact on one line, where the books' strip
+  // in front of them is lit and the board under them dark) before any one book's side.
+  for (Cut& c : cuts)
+    if (c.n.x < 0 || (c.n.x == 0 && (c.n.y < 0 || (c.n.y == 0 && c.n.z < 0)))) { c.n = -c.n; c.d = -c.d; }
+  std::vector<Cut>& unique = w.unique;
+  unique.clear();
+  for (const Cut& c : cuts) {
+    bool same = false;
+    for (Cut& u : unique)
+      if (!same && dot(c.n, u.n) > 1 - 1e-12 && std::fabs(c.d - u.d) <= tol) {
+        u.length += c.length;
+        same = true;
+      }
+    if (!same) unique.push_back(c);
+  }
+  // Lengths compared in steps of the tolerance, ties kept in discovery order (tree order): edges of
+  // equal length (a square box's feet) differ in their last bits once the scene is scaled or moved,
+  // and must not swap (the pieces, their order and thus the bake would change; docs/numerics.md).
+  std::stable_sort(unique.begin(), unique.end(),
+                   [&](const Cut& a, const Cut& b) { return std::llround(a.length / tol) > std::llround(b.length / tol); });
+  if (unique.size() > kMaxCutsPerPolygon) unique.resize(kMaxCutsPerPolygon);
+  std::vector<Loop> pieces = {Loop(q.v.begin(), q.v.begin() + q.count)};
+  std::vector<Loop>& next = w.next;
+  Loop below, above;
+  const double min_area = tol * std::sqrt(polygon_area(q));  // no sliver thinner than the tolerance
+  for (const Cut& c : unique) {
+    next.clear();
+    for (const Loop& l : pieces) {
+      split_loop(l, c.n, c.d, below, above);
+      if (below.size() >= 3 && above.size() >= 3 && loop_area(below) > min_area && loop_area(above) > min_area) {
+        next.push_back(below);
+        next.push_back(above);
+        ++out_q.applied;
+      } else {
+        next.push_back(l);
+      }
+    }
+    pieces.swap(next);
+  }
+  // A piece under a cover, or enclosed by what stands on it, takes a copy of its material: the
+  // same surface, its own smoothing group (the mesher averages vertices only within a material).
+  for (const Loop& l : pieces) {
+    Vec3 centre;
+    for (const Vec3& v : l) centre += v / double(l.size());
+    bool under = false;
+    for (const Loop& f : covers) under = under || inside(f, qn, centre);
+    out_q.under.push_back(under || enclosed(l, centre, standing, tol));
+  }
+  out_q.pieces = std::move(pieces);
+}
+
 }  // namespace
 
 Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolerance) {
@@ -169,92 +254,11 @@ Scene split_contacts(const Scene& scene, ContactSplitStats& stats, double tolera
   // Each polygon's pieces are its own affair: found in parallel, then given out in polygon order
   // (materials for covered pieces made as they are first needed), so the scene is the same whatever
   // the threads.
-  struct Split {
-    std::vector<Loop> pieces;  // empty: the polygon whole
-    std::vector<uint8_t> under;
-    uint64_t applied = 0;
-  };
   std::vector<Split> split(scene.polygons.size());
-  struct Scratch {
-    std::vector<Cut> cuts, unique;
-    std::vector<Loop> covers, next;
-    std::vector<Standing> standing;
-    std::vector<int32_t> stack;
-  };
   tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(scene.polygons.size()), 64), [&](const tbb::blocked_range<uint32_t>& r) {
     Scratch& w = scratch.local();
-    std::vector<Cut>& cuts = w.cuts;
-    std::vector<Loop>& covers = w.covers;
-    std::vector<Standing>& standing = w.standing;
-    for (uint32_t qi = r.begin(); qi != r.end(); ++qi) {
-      const Polygon& q = scene.polygons[qi];
-      const Vec3 qn = polygon_normal(q);
-      const Bounds qb = reach_of(q, tol);
-      cuts.clear();
-      covers.clear();
-      standing.clear();
-      for_each_near(tree, scene, qi, qb, w.stack, [&](const Polygon& p) {
-        contact_cuts(q, qn, p, tol, cuts, &standing);
-        Loop footprint = cover_footprint(q, qn, p, tol);
-        if (!footprint.empty()) {
-          cover_cuts(q, qn, footprint, tol, cuts);
-          covers.push_back(std::move(footprint));
-        }
-      });
-      if (cuts.empty() && covers.empty()) continue;
-      // One cut per line (collinear edges: a row of books, two boxes side by side), the most contact
-      // along it first: a row of books' fronts (a metre of contact on one line, where the books' strip
-      // in front of them is lit and the board under them dark) before any one book's side.
-      for (Cut& c : cuts)
-        if (c.n.x < 0 || (c.n.x == 0 && (c.n.y < 0 || (c.n.y == 0 && c.n.z < 0)))) { c.n = -c.n; c.d = -c.d; }
-      std::vector<Cut>& unique = w.unique;
-      unique.clear();
-      for (const Cut& c : cuts) {
-        bool same = false;
-        for (Cut& u : unique)
-          if (!same && dot(c.n, u.n) > 1 - 1e-12 && std::fabs(c.d - u.d) <= tol) {
-            u.length += c.length;
-            same = true;
-          }
-        if (!same) unique.push_back(c);
-      }
-      // Lengths compared in steps of the tolerance, ties kept in discovery order (tree order): edges of
-      // equal length (a square box's feet) differ in their last bits once the scene is scaled or moved,
-      // and must not swap (the pieces, their order and thus the bake would change; docs/numerics.md).
-      std::stable_sort(unique.begin(), unique.end(),
-                       [&](const Cut& a, const Cut& b) { return std::llround(a.length / tol) > std::llround(b.length / tol); });
-      if (unique.size() > kMaxCutsPerPolygon) unique.resize(kMaxCutsPerPolygon);
-      Split& out_q = split[qi];
-      std::vector<Loop> pieces = {Loop(q.v.begin(), q.v.begin() + q.count)};
-      std::vector<Loop>& next = w.next;
-      Loop below, above;
-      const double min_area = tol * std::sqrt(polygon_area(q));  // no sliver thinner than the tolerance
-      for (const Cut& c : unique) {
-        next.clear();
-        for (const Loop& l : pieces) {
-          split_loop(l, c.n, c.d, below, above);
-          if (below.size() >= 3 && above.size() >= 3 && loop_area(below) > min_area && loop_area(above) > min_area) {
-            next.push_back(below);
-            next.push_back(above);
-            ++out_q.applied;
-          } else {
-            next.push_back(l);
-          }
-        }
-        pieces.swap(next);
-      }
-      // A piece under a cover, or enclosed by what stands on it, takes a copy of its material: the
-      // same surface, its own smoothing group (the mesher averages vertices only within a material).
-      for (const Loop& l : pieces) {
-        Vec3 centre;
-        for (const Vec3& v : l) centre += v / double(l.size());
-        bool under = false;
-        for (const Loop& f : covers) under = under || inside(f, qn, centre);
-        out_q.under.push_back(under || enclosed(l, centre, standing, tol));
-      }
-      out_q.pieces = std::move(pieces);
-    }
+    for (uint32_t qi = r.begin(); qi != r.end(); ++qi) split_polygon(scene, tree, qi, tol, w, split[qi]);
   });
 
   std::vector<int32_t> covered_material(scene.materials.size(), -1);  // q's material → its covered copy

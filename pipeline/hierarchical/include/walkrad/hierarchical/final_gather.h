@@ -42,6 +42,10 @@ using EmitterRanges = std::vector<std::pair<uint32_t, uint32_t>>;
 // Merges b into a (both sorted and disjoint).
 void merge_ranges(EmitterRanges& a, const EmitterRanges& b);
 
+// The emitters of `bounds` ((bound, emitter), ascending as DirectGather::bounds gives them) less the
+// faintest, left out while the sum of their bounds stays at or below `negligible`.
+EmitterRanges without_faintest(const std::vector<std::pair<double, uint32_t>>& bounds, double negligible);
+
 class DirectGather {
  public:
   // lights: punctual lights (null: none); rays: occluders (null: nothing occludes).
@@ -66,8 +70,7 @@ class DirectGather {
   // would cost every point their shadow rays for light that cannot matter.
   std::vector<std::pair<double, uint32_t>> bounds(const EmitterRanges& from, const Vec3* points, size_t count,
                                                   const Vec3& n, const Vec3& rho) const;
-  // The emitters of `from` less the faintest, left out while the sum of what they could give stays at
-  // or below `negligible`.
+  // The emitters of `from` less the faintest (without_faintest of their bounds).
   EmitterRanges strongest(const EmitterRanges& from, const Vec3* points, size_t count, const Vec3& n, const Vec3& rho,
                           double negligible) const;
 

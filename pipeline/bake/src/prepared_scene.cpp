@@ -1,0 +1,111 @@
+#include "prepared_scene.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "walkrad/core/file_hash.h"
+#include "walkrad/formats/error.h"
+#include "walkrad/scene/transmission_twins.h"
+
+namespace walkrad::bake_detail {
+
+namespace {
+
+Scene split_and_free(BakeInputs& inputs, ContactSplitStats& stats) {
+  Scene scene = split_contacts(inputs.scene, stats);
+  std::vector<Polygon>().swap(inputs.scene.polygons);
+  std::vector<Texture>().swap(inputs.scene.textures);
+  return scene;
+}
+
+VolumeSettings volume_settings_of(const BakeSettings& s) {
+  VolumeSettings vs;
+  vs.min_polygons = s.volume_min_polygons;
+  vs.penumbra_ratio = s.volume_penumbra_ratio;
+  return vs;
+}
+
+// A closed scene (no ray escapes) whose surfaces absorb nothing in some channel returns all the light
+// at every bounce: refused with the channels named.
+void refuse_lossless_enclosure(const Scene& scene, const RayScene& rays, const ClusterTree& tree, const std::string& file) {
+  const std::vector<int> lossless = channels_without_absorption(scene);
+  if (lossless.empty()) return;
+  uint64_t closure_rays = 0, pressed = 0;
+  if (!is_closed(scene, rays, closure_rays, pressed, nullptr, &tree)) return;
+  static const char* kNames[] = {"red", "green", "blue"};
+  std::string which;
+  for (int c : lossless) which += std::string(which.empty() ? "" : ", ") + kNames[c];
+  throw InputError(file, "", "the scene is closed (no ray escapes) and no surface absorbs light (reflectance + "
+                             "transmittance = 1 everywhere, channels: " + which + "): every bounce returns all "
+                             "the light, so radiosity has no finite value; give some surface a reflectance below 1");
+}
+
+// Identifies what the extinction grid is made from: every polygon's corners and the volume settings
+// (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
+std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  auto add = [&](const void* data, size_t size) { h = fnv1a(data, size, h); };
+  for (const Polygon& p : scene.polygons) {
+    add(&p.count, sizeof p.count);
+    for (int k = 0; k < p.count; ++k) add(&p.v[size_t(k)], sizeof(Vec3));
+  }
+  add(&vs.min_polygons, sizeof vs.min_polygons);
+  add(&vs.feature_ratio, sizeof vs.feature_ratio);
+  add(&vs.small_object, sizeof vs.small_object);
+  add(&vs.max_dispersion, sizeof vs.max_dispersion);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+}  // namespace
+
+PreparedScene::PreparedScene(BakeInputs& inputs, const BakeSettings& s)
+    : input_polygons(inputs.scene.polygons.size()),
+      scene(split_and_free(inputs, split_stats)),
+      transmission(plan_transmission(scene, s.method, s.effects)),
+      twins(transmission.on ? add_transmission_twins(scene) : std::vector<uint32_t>{}),
+      rays(scene),
+      tree(build_cluster_tree(scene)),
+      volume_settings(volume_settings_of(s)),
+      volume_clusters(s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{}) {
+  refuse_lossless_enclosure(scene, rays, tree, s.scene);
+  plan = plan_effects(scene, rays, inputs.views, s.view_independent, s.method, s.effects, &volume_clusters, &tree);
+  plan.transmission = transmission;
+}
+
+void build_volumes(const PreparedScene& p, const std::string& output, StagedOutput& out, BakeVolumes& v) {
+  const VolumeSettings& vs = p.volume_settings;
+  const VolumeClusters& clusters = p.volume_clusters;
+  const std::string key = volume_key(p.scene, vs);
+  const std::string previous = output + "/extinction.vdb";
+  bool reused = false;
+  if (std::filesystem::exists(previous)) {
+    try {
+      ExtinctionGrid old = ExtinctionGrid::read(previous);
+      if (old.metadata("geometry_key") == key) {
+        v.grid = std::move(old);
+        reused = true;
+      }
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "walkrad: warning: %s: not reused (%s)\n", previous.c_str(), e.what());
+    }
+  }
+  if (!reused) v.grid = ExtinctionGrid::build(clusters.boxes, ExtinctionGrid::choose_voxel_size(clusters.boxes));
+  v.grid.write(out.path("extinction.vdb"), {{"geometry_key", key},
+                                            {"volume_clusters", std::to_string(clusters.boxes.size())},
+                                            {"volume_polygons", std::to_string(clusters.volume_polygons)},
+                                            {"min_polygons", std::to_string(vs.min_polygons)},
+                                            {"feature_ratio", nlohmann::json(vs.feature_ratio).dump()},
+                                            {"penumbra_ratio", nlohmann::json(vs.penumbra_ratio).dump()}});
+  v.solid = std::make_unique<RayScene>(p.scene, clusters.polygon_in_volume);
+  v.visibility = {&clusters, &v.grid, v.solid.get(), vs.penumbra_ratio};
+  const ExtinctionGrid::Stats gs = v.grid.stats();
+  v.report = {{"on", true}, {"grid", reused ? "reused" : "built"}, {"file", "extinction.vdb"},
+              {"clusters", clusters.boxes.size()}, {"polygons", clusters.volume_polygons},
+              {"voxel_size_m", gs.voxel_size}, {"active_voxels", gs.active_voxels}, {"kappa_max", gs.kappa_max},
+              {"min_polygons", vs.min_polygons}, {"feature_ratio", vs.feature_ratio},
+              {"penumbra_ratio", vs.penumbra_ratio}};
+}
+
+}  // namespace walkrad::bake_detail
