@@ -17,5 +17,6 @@ endif()
 
 if(WALKRAD_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  add_compile_definitions(WALKRAD_CHECK_INVARIANTS)  # walkrad/core/invariant.h: the invariants checked too
   add_link_options(-fsanitize=address,undefined -fno-sanitize-recover=all)
 endif()

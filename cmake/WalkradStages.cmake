@@ -77,12 +77,14 @@ function(walkrad_stages_write_json path)
 endfunction()
 
 # walkrad_stage_tests(NAME SOURCES test... LINK extra-lib...): the stage's GoogleTest executable.
-# Tests may drive a whole bake (LINK walkrad_bake) to reach their stage; the libraries may not.
+# Tests may drive a whole bake (LINK walkrad_bake) to reach their stage; the libraries may not. A stage's
+# tests may read its private headers (src/): its parts are tested on their own, beside them.
 function(walkrad_stage_tests name)
   cmake_parse_arguments(T "" "" "SOURCES;LINK" ${ARGN})
   add_executable(walkrad_${name}_tests ${T_SOURCES})
   target_link_libraries(walkrad_${name}_tests PRIVATE walkrad_${name} ${T_LINK} walkrad_testing GTest::gtest_main)
   target_compile_definitions(walkrad_${name}_tests PRIVATE WALKRAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  target_include_directories(walkrad_${name}_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
   walkrad_warnings(walkrad_${name}_tests)
   gtest_discover_tests(walkrad_${name}_tests DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -131,14 +131,14 @@ void Solver::evaluate_divided(IterationStats& is) {
   }
   pending_.erase(pending_.begin() + std::ptrdiff_t(kept), pending_.end());
   const auto start = std::chrono::steady_clock::now();
-  evaluate_range(pending_, 0, pending_.size());
+  evaluator_.evaluate_range(pending_, 0, pending_.size());
   rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rank_work().items += pending_.size();
   rank_work().links += pending_.size();
   for (const Pending& p : pending_) rank_work().rays += p.rays;
   const std::vector<size_t> blocks =
       run_my_block(shared.size(), [&](size_t k) { return 1.0 + shared[k].samples; }, [&](size_t begin, size_t end) {
-        evaluate_range(shared, begin, end);
+        evaluator_.evaluate_range(shared, begin, end);
         rank_work().links += end - begin;
         for (size_t k = begin; k < end; ++k) rank_work().rays += shared[k].rays;
       });

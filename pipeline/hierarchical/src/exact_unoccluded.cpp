@@ -1,6 +1,6 @@
 // A cluster link's unoccluded form factor, exactly: element to element over every pair of the two
 // ends' polygons (where they hold few, kExactClusterPairs), with the pairs that face away left out.
-#include "solver.h"
+#include "link_evaluator.h"
 
 #include <cmath>
 
@@ -9,11 +9,11 @@
 
 namespace walkrad::hierarchical_detail {
 
-uint64_t Solver::polygon_pairs(const HNode& a, const HNode& b) const {
+uint64_t LinkEvaluator::polygon_pairs(const HNode& a, const HNode& b) const {
   return uint64_t(a.cluster ? h_.polygon_count(a) : 1) * uint64_t(b.cluster ? h_.polygon_count(b) : 1);
 }
 
-double Solver::exact_unoccluded(const HNode& ri, const HNode& sj) const {
+double LinkEvaluator::exact_unoccluded(const HNode& ri, const HNode& sj) const {
   // The polygons in place (a cluster's are the scene's), each with what the pair test below needs.
   struct Face {
     const Polygon* p;

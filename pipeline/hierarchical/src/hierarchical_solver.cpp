@@ -6,6 +6,8 @@
 #include "solver.h"
 
 #include "walkrad/core/free_memory.h"
+#include "walkrad/core/invariant.h"
+#include "walkrad/hierarchical/hierarchy_invariants.h"
 #include "walkrad/core/ranks.h"
 #include "walkrad/hierarchical/link_transport.h"
 
@@ -13,7 +15,7 @@ namespace walkrad {
 namespace hierarchical_detail {
 
 Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
-      : h_(h), rays_(rays), proof_(h.scene(), h.tree()), s_(s), stats_(stats) {
+      : h_(h), rays_(rays), s_(s), stats_(stats), evaluator_(h, rays, s) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
   divisible_ = !indivisible_because(s_);
@@ -200,15 +202,18 @@ void Solver::record(IterationStats& is, const std::function<void(const Iteration
     is.absorbed = stats_.iterations.back().absorbed;
     is.residual = stats_.iterations.back().residual;
   }
+  // Checked builds (walkrad/core/invariant.h): the tree, the links and B as a round leaves them, and
+  // energy: the leaves absorb no more than is emitted (a percent for the row sums' Monte Carlo noise).
+  WALKRAD_CHECK_FAULT(hierarchy_fault(h_));
+  for (int c = 0; c < 3; ++c)
+    WALKRAD_INVARIANT(is.absorbed[c] <= 1.01 * is.emitted[c] + 1e-12,
+                      "round " + std::to_string(stats_.iterations.size()) + " absorbs more than is emitted");
   stats_.iterations.push_back(is);
   if (progress) progress(is);
 }
 
-thread_local std::vector<double> Solver::kernel_scratch_;
-thread_local std::vector<Solver::ClusterSample> Solver::cluster_scratch_;
 thread_local std::vector<uint8_t> Solver::blocked_scratch_;
 thread_local std::vector<RayScene::Segment> Solver::probe_scratch_;
-thread_local std::vector<uint8_t> Solver::quadrant_scratch_;
 
 }  // namespace hierarchical_detail
 

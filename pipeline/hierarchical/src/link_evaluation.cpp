@@ -1,7 +1,7 @@
-// Form factors of links, in parallel: the contour formula over receiver quadrature points with a
-// control variate for visibility (elements), Monte Carlo point pairs (clusters), the extinction grid
-// where volumes stand in; and the punctual lights' direct irradiance of elements.
-#include "solver.h"
+// Form factors of links (link_evaluator.h), in parallel: the contour formula over receiver quadrature
+// points with a control variate for visibility (elements), Monte Carlo point pairs (clusters), the
+// extinction grid where volumes stand in.
+#include "link_evaluator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,146 +9,69 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "walkrad/core/ranks.h"
+#include "walkrad/core/invariant.h"
+#include "walkrad/core/rounding.h"
+#include "walkrad/hierarchical/transmission.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/formfactor/form_factor.h"
 
 namespace walkrad::hierarchical_detail {
 
-std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
-  std::vector<double> spread(elements.size(), 0.0);
-  std::vector<uint64_t> rays(elements.size(), 0);
-  const RayScene* occluders = s_.visibility ? &rays_ : nullptr;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) {
-      HNode& n = h_[elements[k]];
-      const DirectIrradiance d = direct_irradiance(n.shape, *s_.lights, occluders, 4, rays[k]);
-      n.D = d.mean;
-      n.D_known = true;
-      spread[k] = luminance(n.rho) * d.spread;
-      // A transmitting element shows τ times what lights its back as well (a bulb inside a shade:
-      // otherwise lamp-room's shade outside is left as coarse as its own dim side asks, 17% off).
-      const Vec3 tau = transmittance(n);
-      if (max_component(tau) > 0) {
-        Polygon back = n.shape;
-        std::reverse(back.v.begin(), back.v.begin() + back.count);
-        spread[k] += luminance(tau) * direct_irradiance(back, *s_.lights, occluders, 4, rays[k]).spread;
-      }
-    }
-  });
-  for (uint64_t r : rays) stats_.light_rays += r;
-  return spread;
+namespace {
+
+// Distance between two boxes (0 when they overlap or touch).
+double box_distance(const Bounds& a, const Bounds& b) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double gap = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
+    d2 += gap * gap;
+  }
+  return std::sqrt(d2);
 }
 
-void Solver::compute_missing_direct() {
-  std::vector<uint32_t> missing;
-  for (uint32_t i = 0; i < h_.nodes().size(); ++i)
-    if (!h_[i].cluster && !h_[i].D_known) missing.push_back(i);
-  direct_for(missing);
+// Scratch of one thread's links (evaluate takes its lists from the caller; these are the evaluation's own).
+thread_local std::vector<uint8_t> blocked_scratch;
+thread_local std::vector<double> kernel_scratch;
+thread_local std::vector<uint8_t> quadrant_scratch;
+
+}  // namespace
+
+Vec3 simulated_transmittance(const Hierarchy& h, const HierarchicalSettings& s, const HNode& n) {
+  if (!s.twins || n.cluster || (*s.twins)[n.polygon] == kNoTwin) return {};
+  return material_transmittance(h, n);
 }
 
-void Solver::evaluate_range(PendingList& list, size_t begin, size_t end) const {
+bool luminaire(const Hierarchy& h, const HierarchicalSettings& s, const HNode& n) {
+  return !n.cluster &&
+         (max_component(n.emission) > 0 || (simulated_lights(s) && max_component(simulated_transmittance(h, s, n)) > 0));
+}
+
+bool close_pair(const Hierarchy& h, uint32_t i, uint32_t j) {
+  const double reach = std::max(h[i].cluster ? h[i].radius : 0.0, h[j].cluster ? h[j].radius : 0.0);
+  return reach > 0 && clearly_greater(0.5 * reach, box_distance(h[i].bounds, h[j].bounds));
+}
+
+LinkEvaluator::LinkEvaluator(const Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s)
+    : h_(h), rays_(rays), proof_(h.scene(), h.tree()), s_(s) {}
+
+void LinkEvaluator::evaluate_range(PendingList& list, size_t begin, size_t end) const {
   tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RayScene::Segment> segments;
     std::vector<double> visible, weights;
-    for (size_t k = r.begin(); k != r.end(); ++k) evaluate(list[k], segments, visible, weights);
-  });
-}
-
-Solver::LinkCounts Solver::count_links(const PendingList& list) const {
-  LinkCounts c{};
-  for (const Pending& p : list) {
-    c[kRays] += p.rays;
-    ++c[p.volume ? kVolume : p.need_rays ? kExact : kUnoccluded];
-    if (p.volume) c[kGridSegments] += p.grid_segments;
-    c[kMonteCarlo] += h_[p.receiver].cluster || h_[p.source].cluster;
-    c[kKept] += kept(p);
-    c[kProven] += p.proven;
-  }
-  return c;
-}
-
-void Solver::add_counts(const LinkCounts& c, IterationStats& is) {
-  for (uint64_t* rays : {&stats_.rays, &is.rays}) *rays += uint64_t(c[kRays]);
-  stats_.volume_links += uint64_t(c[kVolume]);
-  stats_.grid_segments += uint64_t(c[kGridSegments]);
-  stats_.exact_links += uint64_t(c[kExact]);
-  stats_.unoccluded_links += uint64_t(c[kUnoccluded]);
-  stats_.monte_carlo_links += uint64_t(c[kMonteCarlo]);
-  stats_.links += uint64_t(c[kKept]);
-  stats_.proven_hidden += uint64_t(c[kProven]);
-}
-
-void Solver::store_links(PendingList& list) {
-  // The shares scaled to their area mean first, each link on its own (in parallel): 1.2 s of one
-  // thread at 150 rooms, the receivers' quadrants cut again for every link.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, list.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k)
-      if (kept(list[k])) normalize_shares(h_, list[k].receiver, list[k].share);
-  });
-  // Each receiver's list grows once, to its exact size: grown link by link, a list doubles and leaves
-  // up to half of itself unused. The kept links
-  // sorted by receiver first (a counting sort, in list order), so that the receivers fill their
-  // lists on all threads, each in list order as one thread filled them.
-  const size_t nodes = h_.nodes().size();
-  std::vector<uint32_t> begin(nodes + 1, 0);
-  for (const Pending& p : list)
-    if (kept(p)) ++begin[p.receiver + 1];
-  for (size_t i = 0; i < nodes; ++i) begin[i + 1] += begin[i];
-  std::vector<uint32_t> order(begin[nodes]), next(begin.begin(), begin.end() - 1);
-  for (size_t k = 0; k < list.size(); ++k)
-    if (kept(list[k])) order[next[list[k].receiver]++] = uint32_t(k);
-  std::vector<uint32_t>().swap(next);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes, 1024), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      if (begin[i] == begin[i + 1]) continue;
-      std::vector<Link>& links = h_[uint32_t(i)].links;
-      links.reserve(links.size() + (begin[i + 1] - begin[i]));
-      for (uint32_t k = begin[i]; k < begin[i + 1]; ++k) {
-        const Pending& p = list[order[k]];
-        Link l{float(p.F), p.source, p.sigma, p.open, p.share, uint8_t((p.need_rays ? 1 : 0) | (p.volume ? 2 : 0)), p.inner,
-               uint16_t(std::min(p.samples, 65535))};
-        l.seen = p.seen;
-        links.push_back(l);
-      }
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      evaluate(list[k], segments, visible, weights);
+      WALKRAD_INVARIANT(std::isfinite(list[k].F) && list[k].F >= 0 && std::isfinite(list[k].sigma) && list[k].sigma >= 0,
+                        "link " + std::to_string(list[k].receiver) + " <- " + std::to_string(list[k].source) + ": F " +
+                            std::to_string(list[k].F) + ", sigma " + std::to_string(list[k].sigma));
     }
   });
 }
 
-void Solver::take_requests() {
-  if (s_.check_limits) s_.check_limits("link evaluation", requests_.size() * sizeof(Pending));
-  pending_.reserve(requests_.size());
-  for (const LinkRequest& r : requests_) pending_.emplace_back(r);
-  note_link_memory();  // both lists held: the round's peak
-  std::vector<LinkRequest>().swap(requests_);
-}
-
-void Solver::evaluate_pending(IterationStats& is) {
-  if (divided_) {
-    evaluate_divided(is);
-    return;
-  }
-  take_requests();
-  // Under mpirun each rank evaluates one contiguous block of the round's links, of about equal cost
-  // (rays or samples, plus one), and every rank gathers every block (ranks.h): the links and their
-  // order are the same on every rank, and so is each link's result.
-  const std::vector<size_t> blocks =
-      run_my_block(pending_.size(), [&](size_t k) { return 1.0 + pending_[k].samples; }, [&](size_t begin, size_t end) {
-        evaluate_range(pending_, begin, end);
-        rank_work().links += end - begin;
-        for (size_t k = begin; k < end; ++k) rank_work().rays += pending_[k].rays;
-      });
-  share_blocks(pending_, blocks);  // each link whole: its two ends are the same on every rank
-  add_counts(count_links(pending_), is);
-  store_links(pending_);
-  PendingList().swap(pending_);  // its capacity too: the largest round's list is not kept
-}
-
-void Solver::visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const {
+void LinkEvaluator::visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const {
   visible.assign(segments.size(), 1.0);
   if (segments.empty()) return;
   if (p.need_rays) {
-    std::vector<uint8_t>& blocked = blocked_scratch_;
+    std::vector<uint8_t>& blocked = blocked_scratch;
     blocked.assign(segments.size(), 0);
     (p.volume ? *s_.volumes->solid : rays_).occluded(segments.data(), segments.size(), blocked.data());
     p.rays = segments.size();
@@ -204,7 +127,7 @@ void quadrant_area_shares(const Polygon& shape, double area, double* share) {
 
 }  // namespace
 
-void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments,
+void LinkEvaluator::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments,
                                std::vector<double>& visible) const {
   // Element to element, quadrant by quadrant of the receiver (its children to be, split_element):
   // the contour formula over each quadrant's quadrature points gives its unoccluded form factor
@@ -231,16 +154,16 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   };
   const int order = std::max(1, quadrature_order(length(ri.center - sj.center), size(ri), size(sj)) / 2);
   const int per_child = p.need_rays || p.volume ? std::max(1, p.samples / 4) : 0;
-  std::vector<double>& kernel = kernel_scratch_;
+  std::vector<double>& kernel = kernel_scratch;
   kernel.clear();
-  std::vector<uint8_t>& quadrant = quadrant_scratch_;  // of each sample's source point
+  std::vector<uint8_t>& quadrant = quadrant_scratch;  // of each sample's source point
   quadrant.clear();
   segments.clear();
   double area[4], unoccluded[4];
   double seen[4] = {0, 0, 0, 0};  // the visible kernel by the source's quadrant (Link::seen)
   double inner = 0;               // Link::inner, as a share of a child's kernel
   // Only the luminaires' links are read for it (measure_variation); even orders split into quarters.
-  const bool quarters = luminaire(sj) && order >= 2 && order % 2 == 0;
+  const bool quarters = luminaire(h_, s_, sj) && order >= 2 && order % 2 == 0;
   const ContourSource contour(sj.shape);
   for (int c = 0; c < 4; ++c) {
     area[c] = polygon_area(kids[c]);
@@ -319,8 +242,10 @@ void Solver::evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segme
   }
 }
 
-void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
+void LinkEvaluator::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
               std::vector<double>& weights) const {
+  WALKRAD_INVARIANT(p.receiver < h_.nodes().size() && p.source < h_.nodes().size() && p.receiver != p.source,
+                    "a link between nodes " + std::to_string(p.receiver) + " and " + std::to_string(p.source));
   const HNode& ri = h_[p.receiver];
   const HNode& sj = h_[p.source];
   Rng rng(p.receiver, p.source);
@@ -342,10 +267,10 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   // A close pair left whole (close_matters): each sample stands for a disc of 1/n of the source's
   // area, whose form factor A/(πr² + A) is bounded where 1/r² is not (Wallace, Elmquist & Haines
   // 1989). Between touching books the point kernel's tail made rows sum past 1.
-  const double disc = close_pair(p.receiver, p.source) ? sj.area / n : 0.0;
+  const double disc = close_pair(h_, p.receiver, p.source) ? sj.area / n : 0.0;
   double mc = 0, weighted = 0, open = 0;
   int drawn = 0, facing = 0;
-  std::vector<ClusterSample>& drawn_samples = cluster_scratch_;
+  thread_local std::vector<ClusterSample> drawn_samples;
   drawn_samples.clear();
   for (; drawn < n || (facing < (n + 3) / 4 && drawn < 8 * n); ++drawn) {
     Vec3 pi, ni, pj, nj;
@@ -431,7 +356,7 @@ void Solver::evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std:
   }
 }
 
-std::array<float, 4> Solver::cluster_shares(const HNode& ri, const HNode& sj) const {
+std::array<float, 4> LinkEvaluator::cluster_shares(const HNode& ri, const HNode& sj) const {
   // Each child's projected area towards the source, by the source's projected area towards it, over
   // the squared distance: what the child gets per unit area, against the cluster's area mean. From
   // geometry alone (a few Monte Carlo samples per child could not tell a book's spine from its top).
@@ -453,7 +378,7 @@ std::array<float, 4> Solver::cluster_shares(const HNode& ri, const HNode& sj) co
   return out;
 }
 
-std::array<float, 4> Solver::child_shares(uint32_t children, const std::vector<ClusterSample>& samples,
+std::array<float, 4> LinkEvaluator::child_shares(uint32_t children, const std::vector<ClusterSample>& samples,
                                           const std::vector<double>& visible, double F) {
   double Fc[4] = {}, sigma_c[4] = {};
   if (children < 2 || children > 4 || samples.empty()) return shares(Fc, sigma_c, 0, F);
@@ -475,7 +400,7 @@ std::array<float, 4> Solver::child_shares(uint32_t children, const std::vector<C
   return shares(Fc, sigma_c, children, F);
 }
 
-double Solver::point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
+double LinkEvaluator::point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
   const Vec3 d = y - x;
   const double r2 = dot(d, d);
   if (r2 <= 0) return 0;

@@ -15,6 +15,38 @@
 
 namespace walkrad::hierarchical_detail {
 
+std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
+  std::vector<double> spread(elements.size(), 0.0);
+  std::vector<uint64_t> rays(elements.size(), 0);
+  const RayScene* occluders = s_.visibility ? &rays_ : nullptr;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      HNode& n = h_[elements[k]];
+      const DirectIrradiance d = direct_irradiance(n.shape, *s_.lights, occluders, 4, rays[k]);
+      n.D = d.mean;
+      n.D_known = true;
+      spread[k] = luminance(n.rho) * d.spread;
+      // A transmitting element shows τ times what lights its back as well (a bulb inside a shade:
+      // otherwise lamp-room's shade outside is left as coarse as its own dim side asks, 17% off).
+      const Vec3 tau = transmittance(n);
+      if (max_component(tau) > 0) {
+        Polygon back = n.shape;
+        std::reverse(back.v.begin(), back.v.begin() + back.count);
+        spread[k] += luminance(tau) * direct_irradiance(back, *s_.lights, occluders, 4, rays[k]).spread;
+      }
+    }
+  });
+  for (uint64_t r : rays) stats_.light_rays += r;
+  return spread;
+}
+
+void Solver::compute_missing_direct() {
+  std::vector<uint32_t> missing;
+  for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+    if (!h_[i].cluster && !h_[i].D_known) missing.push_back(i);
+  direct_for(missing);
+}
+
 void Solver::refine_for_lights() {
   if (!lights()) return;
   std::vector<uint32_t> frontier = std::move(light_frontier_);  // the roots, lit in the constructor
@@ -47,7 +79,7 @@ std::vector<uint8_t> Solver::under_close_pairs() const {
   if (!importance_) return out;  // every close pair matters (close_matters): none is left whole
   for (uint32_t k = 0; k < out.size(); ++k)  // its own links (where they are held)
     for (const Link& l : h_[k].links)
-      if (close_pair(k, l.source)) {
+      if (close_pair(h_, k, l.source)) {
         out[k] = 1;
         break;
       }

@@ -17,16 +17,6 @@ namespace walkrad::hierarchical_detail {
 
 namespace {
 
-// Distance between two boxes (0 when they overlap or touch).
-double box_distance(const Bounds& a, const Bounds& b) {
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double gap = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
-    d2 += gap * gap;
-  }
-  return std::sqrt(d2);
-}
-
 // True when every point of the other node lies on or behind the element's plane: the element sees
 // nothing of it. An element other is tested by its corners (a convex polygon lies behind a plane when
 // they do), a cluster by its box's: the boxes of two tilted facets side by side on a convex object
@@ -47,11 +37,6 @@ bool behind(const HNode& element, const HNode& other) {
 }
 
 }  // namespace
-
-bool Solver::close_pair(uint32_t i, uint32_t j) const {
-  const double reach = std::max(h_[i].cluster ? h_[i].radius : 0.0, h_[j].cluster ? h_[j].radius : 0.0);
-  return reach > 0 && clearly_greater(0.5 * reach, box_distance(h_[i].bounds, h_[j].bounds));
-}
 
 void Solver::refine_first() {
   std::vector<PairTask> root;
@@ -78,7 +63,7 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   // 1/r² has huge variance and the cluster's average radiosity says nothing of that surface. Where the
   // walkthrough does not look the pair stays whole (close_matters; its kernel bounded: evaluate; its
   // receivers' rows left unscaled: under_close_pairs).
-  const bool must_split = (close_pair(i, j) && close_matters(i)) || two_sided(i) || two_sided(j);
+  const bool must_split = (close_pair(h_, i, j) && close_matters(i)) || two_sided(i) || two_sided(j);
 
   // Candidates between the two: the parent's list filtered by this pair's shaft.
   const Shaft shaft(h_[i].bounds, h_[j].bounds);

@@ -1,12 +1,12 @@
 // Links whose every ray was blocked, and whether their occlusion is proven (occlusion_proof.h): the
 // planes to try are those of the first surfaces a few of their segments meet.
-#include "solver.h"
+#include "link_evaluator.h"
 
 #include <algorithm>
 
 namespace walkrad::hierarchical_detail {
 
-bool Solver::proven_hidden(const Pending& p, const std::vector<RayScene::Segment>& segments) const {
+bool LinkEvaluator::proven_hidden(const Pending& p, const std::vector<RayScene::Segment>& segments) const {
   if (p.volume || segments.empty()) return false;
   // The first surfaces met by a few segments spread over the list (their planes are the walls to try).
   std::array<uint32_t, kProofHints> planes;

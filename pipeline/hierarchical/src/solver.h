@@ -17,46 +17,12 @@
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/transmission.h"
+#include "link_evaluator.h"
 #include "walkrad/core/huge_pages.h"
 #include "walkrad/core/sampling.h"
-#include "walkrad/visibility/occlusion_proof.h"
 #include "walkrad/visibility/shaft.h"
 
 namespace walkrad::hierarchical_detail {
-
-// A link the refinement asks for, as it asks (Pending's first fields): the round's list grows by
-// doubling while the refinement runs, a quarter of the bytes a Pending would copy and fault in, and is
-// made into Pendings once, at their exact count, when the round's links are evaluated (take_requests).
-struct LinkRequest {
-  uint32_t receiver, source;
-  int32_t samples;
-  bool need_rays, volume;
-};
-static_assert(sizeof(LinkRequest) == 16, "LinkRequest's size changed");
-
-// A link found by the refinement, waiting for its form factor (evaluated in parallel).
-// 64 bytes: a round's list is held beside every link while it is evaluated (80 with 64-bit counts;
-// a link casts at most 8 × its samples, and those are at most kHiddenRecast × 65535: 32 bits hold it).
-struct Pending {
-  uint32_t receiver, source;
-  int samples = 0;  // rays (or Monte Carlo samples) for this link
-  bool need_rays;   // Embree rays (against the solid scene when volume)
-  bool volume = false;  // volume clusters in the shaft stand in for their polygons (volume_visibility.h)
-  uint8_t inner = 0;    // Link::inner
-  bool proven = false;  // every ray blocked, and occlusion_proof.h proves every other would be: dropped
-  double F = 0;
-  float sigma = 0, open = 0;
-  std::array<float, 4> share = {1, 1, 1, 1};
-  std::array<uint16_t, 4> seen = {0, 0, 0, 0};
-  uint32_t rays = 0, grid_segments = 0;
-
-  explicit Pending(const LinkRequest& r)
-      : receiver(r.receiver), source(r.source), samples(r.samples), need_rays(r.need_rays), volume(r.volume) {}
-};
-static_assert(sizeof(Pending) == 64, "Pending's size changed");
-// A round's list, made afresh each round: on huge pages (core/huge_pages.h; on small pages, 0.25 M of
-// the 150-room level's page faults are this list's).
-using PendingList = HugeVector<Pending>;
 
 // A refinement plan as the rank holding the receiver's links sends it to the others (a divided solve,
 // divided_solve.cpp): whether the receiver splits, and every link it does not keep (all of them when it
@@ -204,26 +170,15 @@ class Solver {
   // held to an absolute error, not a relative one).
   static constexpr double kDarkShare = 0.1;
 
-  // τ of an element's material when transmission is simulated (else 0).
-  Vec3 transmittance(const HNode& n) const {
-    if (!s_.twins || n.cluster || (*s_.twins)[n.polygon] == kNoTwin) return {};
-    return material_transmittance(h_, n);
-  }
-  // Whether a source acts as a lamp, its light set before the solve: it emits, or its material passes on
-  // what punctual lights give its back (a lamp's shade, lit from inside). Its links keep how their
-  // transfer varies inside the receiver's children (Link::inner): the table 10 cm under lamp-room's
-  // shade stayed one element under one link from it at --error 0.2 and read its mean (the test's
-  // points 6.0% RMS, 1.5% as a luminaire: LampShade.OutsideShowsTheBulbThroughIt).
-  bool luminaire(const HNode& s) const {
-    return !s.cluster && (max_component(s.emission) > 0 || (lights() && max_component(transmittance(s)) > 0));
-  }
+  Vec3 transmittance(const HNode& n) const { return simulated_transmittance(h_, s_, n); }
+  bool luminaire(const HNode& s) const { return walkrad::hierarchical_detail::luminaire(h_, s_, s); }
   Vec3 twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
   // The importance of the twin's node at n's place, by n's share of its area (as last pushed).
   double twin_importance(const HNode& n) const {
     const uint32_t t = twin_node(h_, n, (*s_.twins)[n.polygon]);
     return h_[t].area > 0 ? h_[t].I * std::min(1.0, n.area / h_[t].area) : 0.0;
   }
-  const std::vector<PunctualLight>* lights() const { return s_.lights && !s_.lights->empty() ? s_.lights : nullptr; }
+  const std::vector<PunctualLight>* lights() const { return simulated_lights(s_); }
 
   // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
   // parallel; returns how unevenly each one shows it (ρ × the spread, plus τ × the back's).
@@ -233,10 +188,8 @@ class Solver {
 
   bool splittable(uint32_t i) const;
 
-  // A cluster end within half its radius of the other end (link_refinement.cpp), and whether the
-  // receiver's display needs such a pair split: an error as large as what it shows stays within its
-  // tolerance where its display weight is under e.
-  bool close_pair(uint32_t i, uint32_t j) const;
+  // Whether the receiver's display needs a close pair (close_pair) split: an error as large as what it
+  // shows stays within its tolerance where its display weight is under e.
   bool close_matters(uint32_t i) const { return !importance_ || display_weight(i) >= s_.error; }
   // The leaves under a close pair left whole (their own links or an ancestor's): a closed scene's row
   // scaling is not applied to them (normalise_closed_rows).
@@ -359,8 +312,6 @@ class Solver {
 
   // Form factors of the new links, in parallel: each link draws from its own random stream.
   void evaluate_pending(IterationStats& is);
-  // list[begin, end) evaluated in parallel.
-  void evaluate_range(PendingList& list, size_t begin, size_t end) const;
   // A wholly hidden link stays while it may still see something.
   static bool kept(const Pending& p) { return p.F > 0 || p.sigma > 0; }
   // What a list of evaluated links adds to the statistics, as integers (a divided solve sums each
@@ -372,47 +323,6 @@ class Solver {
   // The kept links of an evaluated list put at their receivers, each receiver's list grown once.
   void store_links(PendingList& list);
 
-  // What of each segment arrives: 0 or 1 from Embree (against the solid scene when the link sees
-  // through volumes), times the transmittance through the extinction grid.
-  void visibility(Pending& p, const std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const;
-
-  void evaluate(Pending& p, std::vector<RayScene::Segment>& segments, std::vector<double>& visible,
-                std::vector<double>& weights) const;
-
-  static constexpr uint64_t kExactClusterPairs = 64;
-
-  // A Monte Carlo sample of a link with a cluster receiver: which child of the receiver its point
-  // lies in, which child of the source its other point lies in, its kernel (0 when the two points do
-  // not face each other), its ray (−1: none).
-  struct ClusterSample {
-    uint32_t child, source_child;
-    double value;
-    int32_t segment;
-  };
-
-  // Element to element, by the receiver's quadrants (link_evaluation.cpp).
-  void evaluate_elements(Pending& p, Rng& rng, std::vector<RayScene::Segment>& segments, std::vector<double>& visible) const;
-
-  // Link::share for a cluster receiver, from its children's facing areas (HNode::facing).
-  std::array<float, 4> cluster_shares(const HNode& ri, const HNode& sj) const;
-
-  // Link::share from Monte Carlo samples, each tagged with the receiver child it lies in.
-  static std::array<float, 4> child_shares(uint32_t children, const std::vector<ClusterSample>& samples,
-                                           const std::vector<double>& visible, double F);
-
-  // The form factor kernel between two surface points, cos θ cos θ' / r² (without the constant).
-  static double point_kernel(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny);
-
-  uint64_t polygon_pairs(const HNode& a, const HNode& b) const;
-
-  // Whether a link whose every segment was blocked is proven hidden (occlusion_proof.h), by the planes
-  // of the first surfaces a few of its segments meet. Not through volumes (their light is attenuated,
-  // never stopped).
-  bool proven_hidden(const Pending& p, const std::vector<RayScene::Segment>& segments) const;
-  static constexpr int kProofHints = 4;  // segments whose first hit names a plane to try
-
-  // (1/A_i) Σ_{k ∈ i} Σ_{m ∈ j} A_k F_km over the polygons (or the element) of each end.
-  double exact_unoccluded(const HNode& ri, const HNode& sj) const;
 
   // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance (unless
   // with_importance is false). Jacobi gathers every node from the previous sweep's radiosity;
@@ -456,9 +366,9 @@ class Solver {
 
   Hierarchy& h_;
   const RayScene& rays_;
-  const OcclusionProof proof_;
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
+  const LinkEvaluator evaluator_;  // the links' form factors (link_evaluator.h)
   double min_area_ = 0, change_ = 0, change_floor_ = 0;
   double relax_ = 1.0;  // ω of the sweep under way (solve_sweep's argument, read by push_pull)
   double white_ = 0, seen_density_ = 0;
@@ -486,12 +396,9 @@ class Solver {
   bool divisible_ = false;
   bool divided_ = false;   // divisible, over several ranks, no checkpoints: links divided among ranks
   uint64_t elsewhere_ = 0; // this round's new links whose receivers another rank holds
-  static thread_local std::vector<double> kernel_scratch_;
-  static thread_local std::vector<ClusterSample> cluster_scratch_;
   std::vector<uint8_t> two_sided_;  // by node: a cluster holding a transmitting polygon or a twin
   static thread_local std::vector<uint8_t> blocked_scratch_;
   static thread_local std::vector<RayScene::Segment> probe_scratch_;
-  static thread_local std::vector<uint8_t> quadrant_scratch_;
 };
 
 }  // namespace walkrad::hierarchical_detail

@@ -2,6 +2,7 @@
 #include "walkrad/output/corner_weld.h"
 #include "walkrad/output/vertex_sides.h"
 #include "walkrad/core/huge_pages.h"
+#include "walkrad/core/invariant.h"
 #include "walkrad/core/ranks.h"
 
 #include <tbb/blocked_range.h>
@@ -373,6 +374,8 @@ void write_vertices(const MeshFaces& faces, const FaceBoundaries& fb, const Vert
     }
     surface.triangle_polygon.resize(mesh.triangle_count(), f.polygon);
   }
+  if (WALKRAD_CHECKS)
+    for (uint32_t index : mesh.indices) WALKRAD_INVARIANT(index < mesh.vertex_count(), "a triangle's vertex out of range");
 }
 
 }  // namespace
