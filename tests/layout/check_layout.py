@@ -14,6 +14,8 @@ Rules:
      Embree; runtime/ includes neither, nor any pipeline header.
   3. No file in pipeline/ is over 500 lines unless a comment in its first 15 lines says why
      ("over 500 lines" and the reason).
+  4. The `walkrad` command (pipeline/cli/, a tool, not a stage) includes only the last stage's headers and
+     what it reaches, and the accuracy stage's (its sweep): the bake library itself never links accuracy.
 Exit 0 when the tree follows them, 1 with one line per violation otherwise.
 """
 import json
@@ -67,6 +69,14 @@ def check(repo, stages):
                         problems.append(f'{rel}: includes {inc}: only the extinction grid sees OpenVDB')
                     if inc.startswith('embree') and stage != 'visibility':
                         problems.append(f'{rel}: includes {inc}: only the visibility stage sees Embree')
+    # The command: the last stage (the bake) and what it reaches, and the accuracy stage (its sweep).
+    tool_allowed = closure(order[-1], deps) | {order[-1], 'formats', 'accuracy'} if order else set()
+    for path in sources(os.path.join(pipeline, 'cli')):
+        rel = os.path.relpath(path, repo)
+        for inc in INCLUDE.findall(open(path, encoding='utf-8').read()):
+            parts = inc.split('/')
+            if len(parts) >= 3 and parts[0] == 'walkrad' and (parts[1] == 'testing' or (parts[1] in order and parts[1] not in tool_allowed)):
+                problems.append(f'{rel}: includes {inc}: the command reaches the bake and the sweep only')
     for path in sources(os.path.join(repo, 'runtime')):
         rel = os.path.relpath(path, repo)
         for inc in INCLUDE.findall(open(path, encoding='utf-8').read()):
@@ -82,14 +92,15 @@ def check(repo, stages):
 
 def self_test():
     """Each planted fault must be reported; the clean tree must not be."""
-    stages = {'order': ['core', 'scene', 'classic', 'accuracy'],
-              'deps': {'core': [], 'scene': ['core'], 'classic': ['scene'], 'accuracy': ['scene']}}
+    stages = {'order': ['core', 'scene', 'classic', 'accuracy', 'bake'],
+              'deps': {'core': [], 'scene': ['core'], 'classic': ['scene'], 'accuracy': ['scene'], 'bake': ['scene']}}
     files = {
         'pipeline/core/src/a.cpp': '#include "walkrad/core/a.h"\n',
         'pipeline/scene/src/b.cpp': '#include "walkrad/core/a.h"\n#include "walkrad/formats/scene.h"\n',
         'pipeline/classic/include/walkrad/classic/c.h': '#include "walkrad/scene/b.h"\n',
         'pipeline/accuracy/src/d.cpp': '#include "walkrad/scene/b.h"\n',
         'runtime/src/e.cpp': '#include "walkrad/formats/manifest.h"\n',
+        'pipeline/cli/main.cpp': '#include "walkrad/bake/f.h"\n#include "walkrad/accuracy/d.h"\n',
     }
     faults = [
         ('pipeline/scene/src/late.cpp', '#include "walkrad/classic/c.h"\n', 'a header of a later stage (classic)'),
@@ -98,6 +109,7 @@ def self_test():
         ('pipeline/core/src/helper.cpp', '#include "walkrad/testing/test_scenes.h"\n', 'test helpers are not library code'),
         ('runtime/src/bad.cpp', '#include "walkrad/scene/b.h"\n', "the runtime links formats' read side only"),
         ('pipeline/core/src/long.cpp', '\n' * 600, 'over 500 with no reason'),
+        ('pipeline/cli/solve.cpp', '#include "walkrad/classic/c.h"\n', 'the command reaches the bake and the sweep only'),
     ]
     failures = 0
 

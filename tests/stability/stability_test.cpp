@@ -435,7 +435,7 @@ nlohmann::json bake_report(const std::string& method) {
   BakeSettings s;
   s.scene = (dir / "furnace.gltf").string();
   s.output = (dir / method).string();
-  s.method = method;
+  s.method = parse_method(method);
   s.element_size = 0.5;
   s.progress = false;
   s.exposure = 1.0;
@@ -597,10 +597,10 @@ TEST_F(BadGeometry, ReflectanceOneBakesWhereSomethingAbsorbsAndIsRefusedWhereNot
   const std::string grey = room_variant("grey", {});
   for (const std::string method : {"hierarchical", "classic"}) {
     BakeSettings b = settings(one_floor, "one-floor-" + method);
-    b.method = method;
+    b.method = parse_method(method);
     EXPECT_NO_THROW(bake(b)) << method;
     BakeSettings g = settings(grey, "grey-" + method);
-    g.method = method;
+    g.method = parse_method(method);
     bake(g);
     std::ifstream in(dir_ / ("one-floor-" + method) / "report.json");
     const nlohmann::json r = nlohmann::json::parse(in);
@@ -622,7 +622,7 @@ TEST_F(BadGeometry, ReflectanceOneBakesWhereSomethingAbsorbsAndIsRefusedWhereNot
   const std::string closed = room_variant("all-white", all_white);
   for (const std::string method : {"hierarchical", "classic"}) {
     BakeSettings b = settings(closed, "all-white-" + method);
-    b.method = method;
+    b.method = parse_method(method);
     try {
       bake(b);
       ADD_FAILURE() << method << ": a closed scene where nothing absorbs was baked";

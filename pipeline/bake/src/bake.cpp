@@ -54,19 +54,18 @@ void write_json(const std::string& path, const json& j) {
 
 // Settings that name a combination no method runs: refused before anything is read.
 void check_method_settings(const BakeSettings& s) {
-  if (s.method != "classic" && s.method != "hierarchical")
-    throw InputError("--method", "", "unknown method '" + s.method + "' (available: hierarchical, classic)", kExitBadArguments);
-  if (!s.checkpoint.empty() && s.method != "hierarchical")
+  const bool classic = s.method == Method::classic;
+  if (!s.checkpoint.empty() && classic)
     throw InputError("--checkpoint", s.checkpoint, "checkpoints save the hierarchical method's solve (the classic method has no rounds)",
                      kExitBadArguments);
-  if (s.solver == "southwell" && s.method != "classic")
-    throw InputError("--solver", s.solver, "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
+  if (s.solver == Iteration::southwell && !classic)
+    throw InputError("--solver", "southwell", "progressive refinement shoots through the classic method's form factor matrix (use --method classic)",
                      kExitBadArguments);
-  if (s.form_factors == "hemicube" && s.method != "classic")
-    throw InputError("--form-factors", s.form_factors, "the hemicube computes the classic method's matrix (use --method classic)",
+  if (s.form_factors == FormFactors::hemicube && !classic)
+    throw InputError("--form-factors", "hemicube", "the hemicube computes the classic method's matrix (use --method classic)",
                      kExitBadArguments);
-  if (s.solver == "jacobi" && s.method == "classic")
-    throw InputError("--solver", s.solver, "the classic method solves by Gauss-Seidel or southwell", kExitBadArguments);
+  if (s.solver == Iteration::jacobi && classic)
+    throw InputError("--solver", "jacobi", "the classic method solves by Gauss-Seidel or southwell", kExitBadArguments);
 }
 
 void require_emitter(const Scene& input, const std::string& file) {
@@ -161,23 +160,52 @@ json ranks_report() {
 }  // namespace
 
 json BakeSettings::to_json() const {
-  return {{"method", method},     {"solver", solver},       {"error", error},     {"view_independent", view_independent},     {"min_area", min_area},
-          {"element_size", element_size}, {"form_factors", form_factors}, {"hemicube_resolution", hemicube_resolution},
+  return {{"method", method_name(method)}, {"solver", iteration_name(solver)}, {"error", error}, {"view_independent", view_independent},
+          {"min_area", min_area}, {"element_size", element_size}, {"form_factors", form_factors_name(form_factors)}, {"hemicube_resolution", hemicube_resolution},
           {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
           {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
           {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
 }
 
-double quality_error(const std::string& quality) {
+double quality_error(Quality quality) {
   // The presets light bakers offer, as the refinement's tolerance relative to what each surface shows
   // (at medium, the default, about 1% weighted RMS on the Cornell box and 2% in office-floor's visited
   // rooms, a twentieth and a tenth of it).
-  if (quality == "draft") return kDraftError;
-  if (quality == "medium") return kMediumError;
-  if (quality == "high") return kHighError;
-  if (quality == "final") return kFinalError;
-  throw InputError("--quality", quality, "unknown quality (available: draft, medium, high, final)", kExitBadArguments);
+  switch (quality) {
+    case Quality::draft: return kDraftError;
+    case Quality::medium: return kMediumError;
+    case Quality::high: return kHighError;
+    case Quality::final: return kFinalError;
+  }
+  return kMediumError;
+}
+
+const char* iteration_name(Iteration iteration) {
+  return iteration == Iteration::jacobi ? "jacobi" : iteration == Iteration::southwell ? "southwell" : "gauss-seidel";
+}
+
+const char* form_factors_name(FormFactors form_factors) { return form_factors == FormFactors::hemicube ? "hemicube" : "contour"; }
+
+Iteration parse_iteration(const std::string& word) {
+  if (word == "gauss-seidel") return Iteration::gauss_seidel;
+  if (word == "jacobi") return Iteration::jacobi;
+  if (word == "southwell") return Iteration::southwell;
+  throw InputError("--solver", word, "unknown solver (available: gauss-seidel, jacobi, southwell)", kExitBadArguments);
+}
+
+FormFactors parse_form_factors(const std::string& word) {
+  if (word == "contour") return FormFactors::contour;
+  if (word == "hemicube") return FormFactors::hemicube;
+  throw InputError("--form-factors", word, "unknown form factors (available: contour, hemicube)", kExitBadArguments);
+}
+
+Quality parse_quality(const std::string& word) {
+  if (word == "draft") return Quality::draft;
+  if (word == "medium") return Quality::medium;
+  if (word == "high") return Quality::high;
+  if (word == "final") return Quality::final;
+  throw InputError("--quality", word, "unknown quality (available: draft, medium, high, final)", kExitBadArguments);
 }
 
 BakeSummary bake(const BakeSettings& s) {
@@ -213,7 +241,7 @@ BakeSummary bake(const BakeSettings& s) {
     build_volumes(prepared, s.output, out, volumes);
   }
   const Scene& scene = prepared.scene;
-  MethodResult result = s.method == "classic"
+  MethodResult result = s.method == Method::classic
                             ? run_classic(s, scene, prepared.rays, prepared.tree, bounds, plan, phases)
                             : run_hierarchical(s, scene, prepared.rays, prepared.tree, views, plan, prepared.twins,
                                                plan.volumes.on ? &volumes.visibility : nullptr, checkpoint, phases);
@@ -244,7 +272,7 @@ BakeSummary bake(const BakeSettings& s) {
   counts["viewpoints"] = views.size();
   counts["dropped_degenerate"] = input.dropped_degenerate;
   json report = {
-      {"format", "walkrad-report"}, {"version", 1},   {"method", s.method},        {"threads", threads},
+      {"format", "walkrad-report"}, {"version", 1},   {"method", method_name(s.method)},        {"threads", threads},
       {"phases", phases.list()},    {"total_seconds", seconds}, {"counts", counts}, {"solver", result.solver},
       {"energy", result.energy},    {"energy_audit", result.audit}, {"warnings", input.warnings}, {"effects", plan.to_json()},
       {"volumes", volumes.report},  {"ranks", ranks_report()},

@@ -68,7 +68,7 @@ PreparedScene::PreparedScene(BakeInputs& inputs, const BakeSettings& s)
       rays(scene),
       tree(build_cluster_tree(scene)),
       volume_settings(volume_settings_of(s)),
-      volume_clusters(s.method == "hierarchical" ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{}) {
+      volume_clusters(s.method == Method::hierarchical ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{}) {
   refuse_lossless_enclosure(scene, rays, tree, s.scene);
   plan = plan_effects(scene, rays, inputs.views, s.view_independent, s.method, s.effects, &volume_clusters, &tree);
   plan.transmission = transmission;

@@ -46,7 +46,7 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   FormFactorSettings ffs;
   ffs.rays_per_point = std::max(1, s.rays_per_point);
   ffs.visibility = plan.visibility.on;
-  if (s.form_factors == "hemicube") ffs.hemicube = s.hemicube_resolution;
+  if (s.form_factors == FormFactors::hemicube) ffs.hemicube = s.hemicube_resolution;
   FormFactorCounts counts;
   FormFactorMatrix f;
   {
@@ -84,7 +84,7 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   SolveStats stats;
   SouthwellStats shooting;
   auto b = std::make_shared<std::vector<Vec3>>();
-  if (plan.indirect.on && s.solver == "southwell") {
+  if (plan.indirect.on && s.solver == Iteration::southwell) {
     SouthwellSettings sw;
     sw.tolerance = s.tolerance;
     *b = solve_southwell(f, area, rho, emission, sw, shooting);
@@ -117,9 +117,9 @@ MethodResult run_classic(const BakeSettings& s, const Scene& scene, const RaySce
   r.counts = {{"elements", n}, {"form_factor_pairs", counts.pairs}, {"unoccluded_pairs", counts.unoccluded},
               {"form_factor_entries", counts.nonzero}, {"visibility_rays", counts.rays}, {"iterations", stats.iterations},
               {"corrections", stats.corrections}, {"light_rays", light_rays}};
-  r.solver = {{"element_size", element_size}, {"form_factors", s.form_factors}, {"iteration", s.solver == "southwell" ? "southwell" : "gauss-seidel"},
+  r.solver = {{"element_size", element_size}, {"form_factors", form_factors_name(s.form_factors)}, {"iteration", s.solver == Iteration::southwell ? "southwell" : "gauss-seidel"},
               {"converged", stats.converged}, {"last_update", stats.last_update}, {"tolerance", s.tolerance}};
-  if (s.solver == "southwell") {
+  if (s.solver == Iteration::southwell) {
     r.counts["shots"] = shooting.shots;
     r.solver["unshot"] = shooting.unshot;
     r.solver["ambient"] = vec_json(shooting.ambient);

@@ -94,7 +94,7 @@ HierarchicalSettings solver_settings(const BakeSettings& s, const Scene& scene, 
   // the 8-room level (11 sweeps against 15) and the 150-room one (12 against 14) measure the same RMS
   // error against their references at both, to every digit.
   hs.tolerance = std::max({s.tolerance, 1e-6, kSweepShareOfError * s.error});
-  hs.gauss_seidel = s.solver == "gauss-seidel";
+  hs.gauss_seidel = s.solver == Iteration::gauss_seidel;
   hs.visibility = plan.visibility.on;
   hs.indirect = plan.indirect.on;
   hs.closed = plan.closure.on;
@@ -221,7 +221,7 @@ json solver_report(const BakeSettings& s, const HierarchicalSettings& hs, const 
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
                       {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
   }
-  return {{"iteration", s.solver},
+  return {{"iteration", iteration_name(s.solver)},
           {"oracle", stats.oracle}, {"error", s.error}, {"white", stats.white}, {"min_area", stats.min_area},
           {"above_tolerance", stats.above_tolerance},
           {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},

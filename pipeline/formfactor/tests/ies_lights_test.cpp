@@ -156,7 +156,7 @@ TEST_P(IesLuminaire, FloorIrradianceMatchesTheProfile) {
     BakeSettings b;
     b.scene = file;
     b.output = (dir_ / method).string();
-    b.method = method;
+    b.method = parse_method(method);
     b.element_size = 0.125;
     b.progress = false;
     b.exposure = 1.0;

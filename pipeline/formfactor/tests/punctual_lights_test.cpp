@@ -148,7 +148,7 @@ TEST_F(PunctualBake, PointLightInARoomThroughAFile) {
     BakeSettings b;
     b.scene = file;
     b.output = (dir_ / method).string();
-    b.method = method;
+    b.method = parse_method(method);
     b.element_size = 0.1;
     b.progress = false;
     b.exposure = 1.0;

@@ -335,7 +335,7 @@ class CornellHierarchical : public ::testing::Test {
     BakeSettings s;
     s.scene = kCornell;
     s.output = (dir_ / name).string();
-    s.method = method;
+    s.method = parse_method(method);
     s.progress = false;
     s.exposure = 1.0;
     return s;

@@ -209,7 +209,7 @@ bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, ui
 }
 
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
-                        bool view_independent, const std::string& method,
+                        bool view_independent, Method method,
                         const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes,
                         const ClusterTree* tree) {
   for (const auto& [name, value] : overrides) {
@@ -249,12 +249,12 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.importance.reason = views.empty() ? "no viewpoints: view-independent refinement (BF oracle)"
                            : view_independent ? "--view-independent: viewpoints used for exposure only"
                                               : std::to_string(views.size()) + " viewpoints: refinement where they look";
-  plan.clusters.on = method == "hierarchical";
+  plan.clusters.on = method == Method::hierarchical;
   plan.clusters.reason = plan.clusters.on ? "hierarchical method: groups of polygons exchange light through cluster links"
                                           : "classic method: element to element only";
   uint64_t closure_rays = 0, pressed_samples = 0;
   double back_share = 0;
-  const bool closed = method == "hierarchical" && is_closed(scene, rays, closure_rays, pressed_samples, &back_share, tree);
+  const bool closed = method == Method::hierarchical && is_closed(scene, rays, closure_rays, pressed_samples, &back_share, tree);
   // Closed, the leaves' row and column sums could be balanced to 1 (link_transport.h). Off unless asked
   // for: with clusters pushing by direction and links by their shares, the row sums stay near 1, and
   // the balance, its factors bounded, does not converge on office-floor, makes it less accurate
@@ -269,7 +269,7 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
     return std::string(text);
   };
   const std::string back_note = back_share > 0 ? ", " + percent(back_share) + " of the area's rays meet a back face" : "";
-  plan.closure.reason = method != "hierarchical" ? "classic method: its uniform elements' row sums need no correction"
+  plan.closure.reason = method != Method::hierarchical ? "classic method: its uniform elements' row sums need no correction"
                         : closed ? "closed: no ray from any surface escapes (" + std::to_string(closure_rays) + " rays" +
                                        pressed_note + back_note + "); each leaf's row sum scaled to 1 (--effect closure=on balances rows and sends)"
                         : back_share > kClosedBackShare
@@ -290,8 +290,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   if (plan.textures.on && !has_textures(scene))
     throw InputError("--effect", "textures", "the scene has no textured surface with texture coordinates", kExitBadArguments);
   const bool has_volumes = volumes && !volumes->empty();
-  plan.volumes.on = has_volumes && plan.visibility.on && method == "hierarchical";
-  if (method != "hierarchical") {
+  plan.volumes.on = has_volumes && plan.visibility.on && method == Method::hierarchical;
+  if (method != Method::hierarchical) {
     plan.volumes.reason = "classic method: exact rays only";
   } else if (!has_volumes) {
     plan.volumes.reason = "no cluster of many small separate objects spread as if at random (a volume): exact rays only";
@@ -303,9 +303,9 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
     if (!plan.visibility.on) plan.volumes.reason += "; but no occlusion is possible here";
   }
   apply_override(plan.volumes, "volumes", overrides);
-  if (plan.volumes.on && (!has_volumes || method != "hierarchical" || !plan.visibility.on))
+  if (plan.volumes.on && (!has_volumes || method != Method::hierarchical || !plan.visibility.on))
     throw InputError("--effect", "volumes",
-                     method != "hierarchical" ? "volumetric visibility exists only in the hierarchical method"
+                     method != Method::hierarchical ? "volumetric visibility exists only in the hierarchical method"
                      : !has_volumes           ? "the scene has no volume cluster"
                                               : "visibility is off: there is nothing to see through",
                      kExitBadArguments);
@@ -319,9 +319,9 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
     throw InputError("--effect", "punctual", "the scene has no punctual lights", kExitBadArguments);
   if (plan.importance.on && views.empty())
     throw InputError("--effect", "importance", "importance needs viewpoints (--views or glTF cameras)", kExitBadArguments);
-  if (plan.clusters.on && method != "hierarchical")
+  if (plan.clusters.on && method != Method::hierarchical)
     throw InputError("--effect", "clusters", "clusters exist only in the hierarchical method", kExitBadArguments);
-  if (!plan.clusters.on && method == "hierarchical")
+  if (!plan.clusters.on && method == Method::hierarchical)
     throw InputError("--effect", "clusters", "the hierarchical method cannot run without clusters (use --method classic)",
                      kExitBadArguments);
   return plan;
@@ -362,15 +362,15 @@ size_t emitting_polygons(const Scene& scene) {
 
 }  // namespace
 
-Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
+Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, Method method,
                    const std::map<std::string, std::string>& overrides) {
   const size_t emitters = emitting_polygons(scene);
   const size_t lights = scene.lights.size();
   Effect e;
-  e.on = emitters + lights > 0 && method == "hierarchical" && !views.empty();
+  e.on = emitters + lights > 0 && method == Method::hierarchical && !views.empty();
   const std::string what = emitters > 0 ? std::to_string(emitters) + " emitting polygons" + (lights > 0 ? " and punctual lights" : "")
                                         : std::to_string(lights) + " punctual lights";
-  e.reason = method != "hierarchical"  ? "classic method: vertices take the elements' radiosity"
+  e.reason = method != Method::hierarchical  ? "classic method: vertices take the elements' radiosity"
              : emitters + lights == 0 ? "no emitter: nothing to gather"
              : views.empty()
                  ? "no viewpoints: nothing says which vertices are seen, they keep the solution's values "
@@ -379,7 +379,7 @@ Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, cons
                           "rays to each emitter), the nearby surfaces' light at the point, and the mesh split where "
                           "its shading would miss a shadow's edge (the links bring the indirect)";
   apply_override(e, "gather", overrides);
-  if (e.on && (emitters + lights == 0 || method != "hierarchical"))
+  if (e.on && (emitters + lights == 0 || method != Method::hierarchical))
     throw InputError("--effect", "gather", emitters + lights == 0 ? "the scene has no emitter" : "the final gather exists only in the hierarchical method",
                      kExitBadArguments);
   return e;
@@ -404,17 +404,17 @@ Effect plan_discontinuities(const Scene& scene, const Effect& gather, const Effe
   return e;
 }
 
-Effect plan_transmission(const Scene& scene, const std::string& method, const std::map<std::string, std::string>& overrides) {
+Effect plan_transmission(const Scene& scene, Method method, const std::map<std::string, std::string>& overrides) {
   size_t count = 0;
   for (const Polygon& p : scene.polygons) count += scene.materials[p.material].transmits() ? 1 : 0;
   Effect e;
-  e.on = count > 0 && method == "hierarchical";
+  e.on = count > 0 && method == Method::hierarchical;
   e.reason = count == 0 ? "no material transmits"
-             : method != "hierarchical"
+             : method != Method::hierarchical
                  ? std::to_string(count) + " polygons transmit, but the classic method does not simulate transmission (use the hierarchical one)"
                  : std::to_string(count) + " polygons transmit (diffuse transmission): each gets a back-facing twin that passes light through";
   apply_override(e, "transmission", overrides);
-  if (e.on && (count == 0 || method != "hierarchical"))
+  if (e.on && (count == 0 || method != Method::hierarchical))
     throw InputError("--effect", "transmission", count == 0 ? "no material transmits" : "the classic method does not simulate transmission",
                      kExitBadArguments);
   return e;

@@ -118,7 +118,7 @@ class EffectPlanBake : public test::TempDirTest {
     BakeSettings s;
     s.scene = file;
     s.output = (dir_ / name).string();
-    s.method = method;
+    s.method = parse_method(method);
     s.element_size = 0.125;
     s.progress = false;
     s.effects = std::move(effects);
@@ -147,10 +147,10 @@ TEST(EffectPlan, NoVolumeClustersNoVolumetricVisibility) {
   const ClusterTree tree = build_cluster_tree(s);
   const VolumeClusters volumes = find_volume_clusters(s, tree, VolumeSettings{});
   EXPECT_TRUE(volumes.empty());
-  const EffectPlan plan = plan_effects(s, rays, {}, false, "hierarchical", {}, &volumes);
+  const EffectPlan plan = plan_effects(s, rays, {}, false, Method::hierarchical, {}, &volumes);
   EXPECT_FALSE(plan.volumes.on);
   EXPECT_NE(plan.volumes.reason.find("no cluster of many small separate objects"), std::string::npos) << plan.volumes.reason;
-  EXPECT_THROW(plan_effects(s, rays, {}, false, "hierarchical", {{"volumes", "on"}}, &volumes), InputError);
+  EXPECT_THROW(plan_effects(s, rays, {}, false, Method::hierarchical, {{"volumes", "on"}}, &volumes), InputError);
 }
 
 // Discontinuity meshing follows the gather where an emitting polygon can be occluded: on with a block
@@ -160,10 +160,10 @@ TEST(EffectPlan, DiscontinuitiesWhereTheGatherMeetsShadows) {
   const std::vector<Viewpoint> views = {{"v", {0.5, 0.5, 0.9}, {0, 0, -1}, {0, 1, 0}, 1.0, 1.0}};
   const Scene block = box_with_block(), empty = lit_box(0.5);
   const RayScene block_rays(block), empty_rays(empty);
-  const EffectPlan on = plan_effects(block, block_rays, views, false, "hierarchical", {});
+  const EffectPlan on = plan_effects(block, block_rays, views, false, Method::hierarchical, {});
   EXPECT_TRUE(on.gather.on && on.discontinuities.on) << on.discontinuities.reason;
-  EXPECT_FALSE(plan_effects(empty, empty_rays, views, false, "hierarchical", {}).discontinuities.on);
-  const EffectPlan no_views = plan_effects(block, block_rays, {}, false, "hierarchical", {});
+  EXPECT_FALSE(plan_effects(empty, empty_rays, views, false, Method::hierarchical, {}).discontinuities.on);
+  const EffectPlan no_views = plan_effects(block, block_rays, {}, false, Method::hierarchical, {});
   EXPECT_FALSE(no_views.discontinuities.on);
   EXPECT_NE(no_views.discontinuities.reason.find("final gather is off"), std::string::npos) << no_views.discontinuities.reason;
   Scene punctual = box_with_block();
@@ -172,12 +172,12 @@ TEST(EffectPlan, DiscontinuitiesWhereTheGatherMeetsShadows) {
   punctual.lights.back().position = Vec3(0.5, 0.5, 0.8);
   punctual.lights.back().intensity = Vec3(1, 1, 1);
   const RayScene punctual_rays(punctual);
-  const EffectPlan lamps = plan_effects(punctual, punctual_rays, views, false, "hierarchical", {});
+  const EffectPlan lamps = plan_effects(punctual, punctual_rays, views, false, Method::hierarchical, {});
   EXPECT_TRUE(lamps.gather.on);
   EXPECT_FALSE(lamps.discontinuities.on);
-  EXPECT_THROW(plan_effects(block, block_rays, views, false, "hierarchical", {{"gather", "off"}, {"discontinuities", "on"}}),
+  EXPECT_THROW(plan_effects(block, block_rays, views, false, Method::hierarchical, {{"gather", "off"}, {"discontinuities", "on"}}),
                InputError);
-  EXPECT_FALSE(plan_effects(block, block_rays, views, false, "hierarchical", {{"discontinuities", "off"}}).discontinuities.on);
+  EXPECT_FALSE(plan_effects(block, block_rays, views, false, Method::hierarchical, {{"discontinuities", "off"}}).discontinuities.on);
 }
 
 TEST_F(EffectPlanBake, EmptyBoxCastsNoVisibilityRaysAndMatchesTheFullSolve) {

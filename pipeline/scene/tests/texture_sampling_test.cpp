@@ -61,11 +61,11 @@ TEST(TextureSampling, ElementsTakeTheirOwnPartOfTheTexture) {
 TEST(TextureSampling, EffectPlanSamplesOnlyTexturedSurfaces) {
   Scene s = textured_floor();
   const RayScene rays(s);
-  EXPECT_TRUE(plan_effects(s, rays, {}, false, "hierarchical", {}).textures.on);
-  EXPECT_FALSE(plan_effects(s, rays, {}, false, "hierarchical", {{"textures", "off"}}).textures.on);
+  EXPECT_TRUE(plan_effects(s, rays, {}, false, Method::hierarchical, {}).textures.on);
+  EXPECT_FALSE(plan_effects(s, rays, {}, false, Method::hierarchical, {{"textures", "off"}}).textures.on);
   s.polygons[0].uv.valid = false;  // a texture but no coordinates: the average
   const RayScene rays2(s);
-  EXPECT_FALSE(plan_effects(s, rays2, {}, false, "hierarchical", {}).textures.on);
+  EXPECT_FALSE(plan_effects(s, rays2, {}, false, Method::hierarchical, {}).textures.on);
 }
 
 }  // namespace

@@ -130,7 +130,7 @@ TEST_F(VolumeBake, ForcingVolumesOnTheClassicMethodIsRefused) {
   BakeSettings s;
   s.scene = (dir_ / "dense-hedge.glb").string();
   s.output = (dir_ / "classic").string();
-  s.method = "classic";
+  s.method = Method::classic;
   s.progress = false;
   s.effects = {{"volumes", "on"}};
   try {

@@ -12,21 +12,43 @@
 
 #include "walkrad/bake/bake_caps.h"
 #include "walkrad/hierarchical/error_presets.h"
+#include "walkrad/plan/method.h"
 
 namespace walkrad {
 
 struct RaySample;  // walkrad/hierarchical/hierarchical_solver.h
+
+// The iteration that solves a method's system (walkrad bake --solver).
+enum class Iteration : uint8_t {
+  gauss_seidel,  // both methods (hierarchical: by input polygon)
+  jacobi,        // hierarchical; under mpirun it divides the links among the ranks
+  southwell,     // classic: progressive refinement (southwell.h)
+};
+// The classic method's form factors (walkrad bake --form-factors).
+enum class FormFactors : uint8_t {
+  contour,   // contour formula × Embree rays
+  hemicube,  // Cohen & Greenberg 1985, z-buffered
+};
+// The named presets of --error (walkrad bake --quality).
+enum class Quality : uint8_t { draft, medium, high, final };
+
+// Each as the command line and the manifest spell it, and parsed once from that word: InputError (exit 2,
+// naming the option and the choices) for another.
+const char* iteration_name(Iteration iteration);
+const char* form_factors_name(FormFactors form_factors);
+Iteration parse_iteration(const std::string& word);
+FormFactors parse_form_factors(const std::string& word);
+Quality parse_quality(const std::string& word);
 
 struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
-  std::string method = "hierarchical";  // or "classic" (uniform mesh, full matrix: the baseline)
-  std::string form_factors = "contour";  // classic: "contour" (× rays) or "hemicube"
-  int hemicube_resolution = 256;         // classic, hemicube: pixels on the top face's side
-  std::string solver = "gauss-seidel";  // "gauss-seidel" (hierarchical: by input polygon), "jacobi" (hierarchical)
-                                        // or "southwell" (classic: progressive refinement, southwell.h)
+  Method method = Method::hierarchical;
+  FormFactors form_factors = FormFactors::contour;  // classic
+  int hemicube_resolution = 256;                    // classic, hemicube: pixels on the top face's side
+  Iteration solver = Iteration::gauss_seidel;
   // hierarchical: the relative error each surface may show (where the walkthrough looks, with
   // importance), e.g. 0.02 for 2%; quality_error() maps the named presets to it.
   double error = kDefaultError;
@@ -71,8 +93,7 @@ struct BakeSummary {
 };
 
 // The requested relative error of a named quality: draft, medium (the default), high, final.
-// Throws InputError (exit 2) for another name.
-double quality_error(const std::string& quality);
+double quality_error(Quality quality);
 
 // Throws InputError (bad scene or walkthrough), OutputError (cannot write), std::runtime_error.
 BakeSummary bake(const BakeSettings& settings);

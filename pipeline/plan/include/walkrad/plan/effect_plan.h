@@ -34,6 +34,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "walkrad/plan/method.h"
 #include "walkrad/formats/scene.h"
 #include "walkrad/visibility/ray_scene.h"
 #include "walkrad/visibility/volume_clusters.h"
@@ -58,13 +59,13 @@ struct EffectPlan {
 // volumes: the scene's volume clusters (null: none looked for). tree: the scene's cluster tree, for
 // is_closed (null: it makes its own where it needs one).
 EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vector<Viewpoint>& views,
-                        bool view_independent, const std::string& method,
+                        bool view_independent, Method method,
                         const std::map<std::string, std::string>& overrides, const VolumeClusters* volumes = nullptr,
                         const ClusterTree* tree = nullptr);
 
 // The gather entry: on where the hierarchical method meets an emitting polygon and viewpoints; overrides as
 // plan_effects'.
-Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, const std::string& method,
+Effect plan_gather(const Scene& scene, const std::vector<Viewpoint>& views, Method method,
                    const std::map<std::string, std::string>& overrides);
 
 // The discontinuities entry: on with the gather where emitting polygons can be occluded; overrides as
@@ -100,6 +101,6 @@ std::vector<int> channels_without_absorption(const Scene& scene);
 
 // The transmission entry: on when a polygon's material transmits and the method is hierarchical;
 // overrides as plan_effects' ("transmission" → "on" or "off").
-Effect plan_transmission(const Scene& scene, const std::string& method, const std::map<std::string, std::string>& overrides);
+Effect plan_transmission(const Scene& scene, Method method, const std::map<std::string, std::string>& overrides);
 
 }  // namespace walkrad

@@ -17,7 +17,7 @@ void add_bake(CLI::App& app, BakeCommand& c) {
   c.app->add_option("scene", c.bs.scene, "scene file (.gltf, .glb)")->required();
   c.app->add_option("--views", c.bs.views, "walkthrough JSON (default: the scene's cameras)");
   c.app->add_option("-o,--output", c.bs.output, "output folder (default: <scene name>.bake)");
-  c.app->add_option("--method", c.bs.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
+  c.app->add_option("--method", c.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
       ->capture_default_str();
   auto* error_opt = c.app->add_option("--error", c.bs.error,
                        "hierarchical: refinement tolerance, relative to what each surface shows where the walkthrough looks "
@@ -25,11 +25,11 @@ void add_bake(CLI::App& app, BakeCommand& c) {
       ->check(CLI::Range(1e-3, 1.0))->capture_default_str();
   c.app->add_option("--quality", c.quality, "hierarchical: draft, medium (the default), high or final: a preset --error")
       ->check(CLI::IsMember({"draft", "medium", "high", "final"}))->excludes(error_opt);
-  c.app->add_option("--solver", c.bs.solver,
+  c.app->add_option("--solver", c.solver,
                        "gauss-seidel (both methods), jacobi (hierarchical; under mpirun it divides the links among the "
                        "ranks) or southwell (classic: progressive refinement, shooting the most unshot power first)")
       ->check(CLI::IsMember({"gauss-seidel", "jacobi", "southwell"}))->capture_default_str();
-  c.app->add_option("--form-factors", c.bs.form_factors,
+  c.app->add_option("--form-factors", c.form_factors,
                        "classic: contour (contour formula × Embree rays) or hemicube (Cohen & Greenberg 1985, z-buffered)")
       ->check(CLI::IsMember({"contour", "hemicube"}))->capture_default_str();
   c.app->add_option("--hemicube-resolution", c.bs.hemicube_resolution, "classic, hemicube: pixels on the top face's side")
@@ -96,7 +96,11 @@ int run_bake(BakeCommand& c, const Ranks& rk, bool& stopped) {
   }
   bs.progress = !c.quiet && rk.rank == 0;
   bs.compress = !c.no_compression;
-  if (!c.quality.empty()) bs.error = quality_error(c.quality);
+  // The words parsed once: the bake reads enums.
+  bs.method = parse_method(c.method);
+  bs.solver = parse_iteration(c.solver);
+  bs.form_factors = parse_form_factors(c.form_factors);
+  if (!c.quality.empty()) bs.error = quality_error(parse_quality(c.quality));
   for (const std::string& e : c.effect_overrides) {
     const size_t eq = e.find('=');
     if (eq == std::string::npos) throw InputError("--effect", e, "expected NAME=on or NAME=off", kExitBadArguments);

@@ -25,7 +25,9 @@ inline std::string default_output(const std::string& scene, const char* suffix) 
 struct BakeCommand {
   CLI::App* app = nullptr;
   BakeSettings bs;
-  std::string quality;
+  // As typed (each parsed into bs's enum by run_bake).
+  std::string method = method_name(Method::hierarchical), solver = iteration_name(Iteration::gauss_seidel),
+              form_factors = form_factors_name(FormFactors::contour), quality;
   std::vector<std::string> effect_overrides;
   bool quiet = false, no_compression = false, with_web = false;
 };
