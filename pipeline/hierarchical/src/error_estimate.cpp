@@ -8,7 +8,7 @@
 // - the form factor's own Monte Carlo noise (its standard error, Link::sigma).
 // Each is compared with a tolerance relative to what the receiver shows, so that ε means the same in
 // a white room and a grey one, in one room and in a hundred.
-#include "solver.h"
+#include "error_oracle.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,27 +17,38 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include "link_evaluator.h"
 #include "walkrad/core/rounding.h"
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/hierarchical/cluster_radiosity.h"
 #include "walkrad/hierarchical/hierarchy_walk.h"
+#include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/link_transport.h"
+#include "walkrad/hierarchical/transmission.h"
 
 namespace walkrad::hierarchical_detail {
 
-void Solver::update_scales() {
+ErrorOracle::ErrorOracle(const Hierarchy& h, const HierarchicalSettings& s, double quantum_area)
+    : h_(h), s_(s), quantum_area_(quantum_area) {}
+
+void ErrorOracle::weigh_by_importance(double seen_density) {
+  importance_ = true;
+  seen_density_ = seen_density;
+}
+
+void ErrorOracle::update_scales() {
   // Display weights: a node's leaves' largest (an error left at a cluster reaches every leaf below it,
   // seen or not). Children come after their parents. The first refinement takes the direct importance
   // only: the first round's cluster links spread the shot importance over whole buildings by area, and
   // what is refined on it stays refined.
   const size_t count = h_.nodes().size();
-  weight_.assign(count, importance_ ? 0.0f : 1.0f);
+  state_.weight.assign(count, importance_ ? 0.0f : 1.0f);
   if (importance_) {
     nodes_bottom_up(h_, [&](uint32_t k) {  // in parallel: a maximum is the same in any order
       const HNode& n = h_[k];
-      const double I = direct_weights_ ? n.R : n.I;
-      if (n.child_count == 0 && n.area > 0 && seen_density_ > 0) weight_[k] = float(std::min(1.0, I / (n.area * seen_density_)));
-      for (uint32_t c = 0; c < n.child_count; ++c) weight_[k] = std::max(weight_[k], weight_[h_.child(n, c)]);
+      const double I = state_.direct_weights ? n.R : n.I;
+      if (n.child_count == 0 && n.area > 0 && seen_density_ > 0) state_.weight[k] = float(std::min(1.0, I / (n.area * seen_density_)));
+      for (uint32_t c = 0; c < n.child_count; ++c) state_.weight[k] = std::max(state_.weight[k], state_.weight[h_.child(n, c)]);
     });
   }
   // Emitters are left out, as the exposure leaves them out (a light may clip to white), unless the
@@ -61,33 +72,33 @@ void Solver::update_scales() {
     below += w;
     if (below >= 0.95 * total) break;
   }
-  white_ = p95 / 0.9;
+  state_.white = p95 / 0.9;
 }
 
-double Solver::display_weight(uint32_t i) const {
+double ErrorOracle::display_weight(uint32_t i) const {
   if (!importance_) return 1.0;
-  if (i < weight_.size()) return double(weight_[i]);
+  if (i < state_.weight.size()) return double(state_.weight[i]);
   // A node made this round: its own direct importance (its view hits follow it: Hierarchy::subdivide)
   // and its share by area of the indirect importance of the ancestor the last update weighed (push-pull
   // spreads it so), as update_scales weighs a leaf. Its parent's weight, the largest of its leaves',
   // let one seen metre of a corridor's 320 m floor refine all of it within one round.
   uint32_t a = i;
-  while (a >= weight_.size() && h_[a].parent >= 0) a = uint32_t(h_[a].parent);
-  if (a >= weight_.size() || seen_density_ <= 0 || h_[i].area <= 0 || h_[a].area <= 0) return 1.0;
+  while (a >= state_.weight.size() && h_[a].parent >= 0) a = uint32_t(h_[a].parent);
+  if (a >= state_.weight.size() || seen_density_ <= 0 || h_[i].area <= 0 || h_[a].area <= 0) return 1.0;
   const HNode& n = h_[i];
   const HNode& ancestor = h_[a];
-  const double indirect = direct_weights_ ? 0.0 : std::max(0.0, ancestor.I - ancestor.R) * n.area / ancestor.area;
+  const double indirect = state_.direct_weights ? 0.0 : std::max(0.0, ancestor.I - ancestor.R) * n.area / ancestor.area;
   return std::min(1.0, (n.R + indirect) / (n.area * seen_density_));
 }
 
-double Solver::tolerance(uint32_t i) const {
+double ErrorOracle::tolerance(uint32_t i) const {
   const HNode& n = h_[i];
-  const double shown = std::clamp(luminance(n.B), kDarkShare * white_, white_);
+  const double shown = std::clamp(luminance(n.B), kDarkShare * state_.white, state_.white);
   const double w = display_weight(i);
   return w > 0 && shown > 0 ? s_.error * shown / w : INFINITY;  // nothing lit yet: nothing to refine
 }
 
-void Solver::measure_spread() {
+void ErrorOracle::measure_spread() {
   // Every subtree's range, each node after its children (in parallel: a minimum and a maximum are
   // the same in any order).
   const size_t n = h_.nodes().size();
@@ -101,51 +112,47 @@ void Solver::measure_spread() {
       hi[k] = std::max(hi[k], hi[child]);
     }
   });
-  spread_.assign(n, 0.0f);
+  state_.spread.assign(n, 0.0f);
   for (size_t i = 0; i < n; ++i)
-    if (hi[i] >= lo[i]) spread_[i] = hi[i] - lo[i];
-  emitted_.assign(n, 0.0f);
+    if (hi[i] >= lo[i]) state_.spread[i] = hi[i] - lo[i];
+  state_.emitted.assign(n, 0.0f);
   if (!s_.gather) return;
   const std::vector<Vec3> emitted = emitted_as_sent(h_);
-  for (size_t i = 0; i < n; ++i) emitted_[i] = float(luminance(emitted[i]));
+  for (size_t i = 0; i < n; ++i) state_.emitted[i] = float(luminance(emitted[i]));
 }
 
-bool Solver::gathered(uint32_t i) const {
+bool ErrorOracle::gathered(uint32_t i) const {
   const HNode& n = h_[i];
   if (!s_.gather || n.cluster) return false;
   if (s_.gathered && !(*s_.gathered)[n.polygon]) return false;
   return !s_.twins || (*s_.twins)[n.polygon] == kNoTwin;
 }
 
-double Solver::reflected_sent(uint32_t source) const {
+double ErrorOracle::reflected_sent(uint32_t source) const {
   if (!s_.indirect) return 0.0;  // sources send their emission alone
   // A node made this round: its parent's (an element's children share its emission).
   uint32_t j = source;
-  while (j >= emitted_.size() && h_[j].parent >= 0) j = uint32_t(h_[j].parent);
+  while (j >= state_.emitted.size() && h_[j].parent >= 0) j = uint32_t(h_[j].parent);
   const double all = luminance(sent(h_[source]));
-  return j < emitted_.size() ? std::max(0.0, all - double(emitted_[j])) : all;
+  return j < state_.emitted.size() ? std::max(0.0, all - double(state_.emitted[j])) : all;
 }
 
-Vec3 Solver::sent_to(const HNode& n, const Link& l) const {
-  return link_radiosity_towards(h_, l, n.center, facing_bt_, [&](uint32_t node) { return sent(h_[node]); });
-}
-
-Vec3 Solver::link_sent(const Link& l) const {
+Vec3 ErrorOracle::link_sent(const Link& l) const {
   Vec3 b;
   for_each_part(h_, l, [&](uint32_t node, double w) { b += sent(h_[node]) * w; });
   return b;
 }
 
-double Solver::reflected_sent(const Link& l) const {
+double ErrorOracle::reflected_sent(const Link& l) const {
   double b = 0;
   for_each_part(h_, l, [&](uint32_t node, double w) { b += reflected_sent(node) * w; });
   return b;
 }
 
-void Solver::measure_variation() {
+void ErrorOracle::measure_variation() {
   measure_spread();
-  variation_.assign(h_.nodes().size(), 0.0f);
-  left_.assign(h_.nodes().size(), 0.0f);
+  state_.variation.assign(h_.nodes().size(), 0.0f);
+  state_.left.assign(h_.nodes().size(), 0.0f);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, h_.nodes().size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const HNode& n = h_[uint32_t(i)];
@@ -187,24 +194,24 @@ void Solver::measure_variation() {
       const double rho = luminance(n.rho);
       if (!n.cluster && rho * inner > worst && clearly_greater(rho * inner, tolerance(uint32_t(i))))
         worst = std::max(worst, rho * emitted_inner(uint32_t(i)));
-      variation_[i] = float(worst);
+      state_.variation[i] = float(worst);
       // Shares already give each child its own mean (the push and the vertices use them), so what is
       // left is the variation inside a child: for a transfer that varies linearly across the node, a
       // child's half-range equals its mean's distance from the node's, and a linear ramp's RMS about
       // its mean is its half-range / √3.
-      left_[i] = float(std::sqrt(squares / double(kids) / 3.0));
+      state_.left[i] = float(std::sqrt(squares / double(kids) / 3.0));
     }
   });
   // A source's variation is read by the receivers that link to it, wherever they are held.
   share_element_values<std::array<float, 2>>(
-      h_, [&](uint32_t i) { return std::array<float, 2>{variation_[i], left_[i]}; },
+      h_, [&](uint32_t i) { return std::array<float, 2>{state_.variation[i], state_.left[i]}; },
       [&](uint32_t i, const std::array<float, 2>& v) {
-        variation_[i] = v[0];
-        left_[i] = v[1];
+        state_.variation[i] = v[0];
+        state_.left[i] = v[1];
       });
 }
 
-double Solver::emitted_inner(uint32_t i) const {
+double ErrorOracle::emitted_inner(uint32_t i) const {
   // The luminaires' unoccluded irradiance at the centres of the quarters of each child (split_element
   // twice), times the fraction of each source its link sees; the largest departure of a quarter from
   // its child's mean.
@@ -218,7 +225,7 @@ double Solver::emitted_inner(uint32_t i) const {
   }
   for (const Link& l : n.links) {
     const HNode& s = h_[l.source];
-    if (!luminaire(s) || l.open <= 0) continue;
+    if (!luminaire(h_, s_, s) || l.open <= 0) continue;
     const double sent = luminance(link_sent(l)) * std::min(1.0, l.F / double(l.open));
     for (int c = 0; c < 4; ++c)
       for (int q = 0; q < 4; ++q)
@@ -232,7 +239,7 @@ double Solver::emitted_inner(uint32_t i) const {
   return worst;
 }
 
-double Solver::transfer_estimate(const HNode& ri, const HNode& sj) const {
+double ErrorOracle::transfer_estimate(const HNode& ri, const HNode& sj) const {
   const Vec3 d = sj.center - ri.center;
   const double r2 = dot(d, d), r = std::sqrt(r2);
   const bool near = clearly_greater(2.0 * (ri.radius + sj.radius), r);
@@ -242,13 +249,13 @@ double Solver::transfer_estimate(const HNode& ri, const HNode& sj) const {
   return ci * cj * sj.area / (kPi * r2 + sj.area);
 }
 
-bool Solver::worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* link) const {
-  if (white_ <= 0) return false;  // nothing solved yet
+bool ErrorOracle::worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* link) const {
+  if (state_.white <= 0) return false;  // nothing solved yet
   const HNode& ri = h_[i];
   const HNode& sj = h_[j];
   const double sent_b = luminance(sent(sj));
-  const double spread = j < spread_.size() ? double(spread_[j]) : sj.parent >= 0 && size_t(sj.parent) < spread_.size()
-                                                                        ? double(spread_[size_t(sj.parent)]) : 0.0;
+  const double spread = j < state_.spread.size() ? double(state_.spread[j]) : sj.parent >= 0 && size_t(sj.parent) < state_.spread.size()
+                                                                        ? double(state_.spread[size_t(sj.parent)]) : 0.0;
   if (!occluded && !clearly_greater(spread, s_.error * sent_b)) return false;  // a uniform source in full view: exact
   // What the link may carry: the estimate from the centres, or its own form factor once evaluated; a
   // link whose every ray was blocked, what its n rays could have missed: the fraction below which n
@@ -265,13 +272,13 @@ bool Solver::worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* 
   // floor beside the door). A far or small source is seen alike in all its parts: its mean is right.
   const double near = std::min(1.0, sj.radius / std::max(length(sj.center - ri.center), 1e-300));
   const double carried = luminance(ri.rho) * std::max(sent_b, near * spread) * F * ri.area * display_weight(i);
-  return clearly_greater(carried, s_.error * white_ * quantum_area_);
+  return clearly_greater(carried, s_.error * state_.white * quantum_area_);
 }
 
-double Solver::source_error(const HNode& ri, const Link& l) const {
+double ErrorOracle::source_error(const HNode& ri, const Link& l, const std::function<bool(uint32_t)>& splittable) const {
   const HNode& sj = h_[l.source];
   const double rho = luminance(ri.rho);
-  if (sj.child_count == 0) return splittable(l.source) ? 0.5 * rho * l.F * double(variation_[l.source]) : 0.0;
+  if (sj.child_count == 0) return splittable(l.source) ? 0.5 * rho * l.F * double(state_.variation[l.source]) : 0.0;
   // What the receiver would get from the source's parts two levels down (or one, where a child is a
   // leaf), each weighed by the kernel from the receiver's centre (cosines taken as 1 where the two are
   // too close for centre angles to mean anything, or at a cluster end), against the mean it sends.
@@ -295,18 +302,18 @@ double Solver::source_error(const HNode& ri, const Link& l) const {
   // A link that sees only part of its source: what it sees need not send the mean, by up to half the
   // source's spread of radiosity (most where half of it is hidden).
   const double seen = l.open > 0 ? std::clamp(l.F / double(l.open), 0.0, 1.0) : 1.0;
-  const double hidden = rho * l.F * double(spread_[l.source]) * std::min(seen, 1.0 - seen);
+  const double hidden = rho * l.F * double(state_.spread[l.source]) * std::min(seen, 1.0 - seen);
   return std::max(seen_parts, hidden);
 }
 
-void Solver::measure_left_error() {
+uint64_t ErrorOracle::measure_left_error(Hierarchy& h, const std::function<bool(uint32_t)>& here,
+                                         const std::function<bool(uint32_t)>& splittable) {
   update_scales();
   measure_variation();
-  stats_.white = white_;
   // Each node's own (nodes in parallel: each writes its own error).
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(h_.nodes().size()), 1024), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t i = r.begin(); i != r.end(); ++i) {
-      HNode& n = h_[i];
+      HNode& n = h[i];
       if (!here(i)) continue;  // its holder's, below
       if (n.links.empty()) {
         n.error = 0;
@@ -314,21 +321,23 @@ void Solver::measure_left_error() {
       }
       // An RMS, as the sweep measures: the variation's RMS left inside the children, not its worst
       // child (which the refinement tests), with the source's and the form factor's errors.
-      double sq = double(left_[i]) * double(left_[i]);
+      double sq = double(state_.left[i]) * double(state_.left[i]);
       const double rho = luminance(n.rho);
       const bool gather = gathered(i);
       for (const Link& l : n.links) {
         const double carried = gather ? reflected_sent(l) : luminance(link_sent(l));
-        const double source = source_error(n, l), noise = rho * carried * l.sigma;
+        const double source = source_error(n, l, splittable), noise = rho * carried * l.sigma;
         sq += source * source + noise * noise;
       }
       n.error = float(std::sqrt(sq));
     }
   });
-  share_element_values<float>(h_, [&](uint32_t i) { return h_[i].error; },
-                              [&](uint32_t i, float e) { h_[i].error = e; });
+  share_element_values<float>(h, [&](uint32_t i) { return h[i].error; },
+                              [&](uint32_t i, float e) { h[i].error = e; });
+  uint64_t above = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
-    if (h_[i].error / std::max(tolerance(i), 1e-300) > 1) ++stats_.above_tolerance;
+    if (h_[i].error / std::max(tolerance(i), 1e-300) > 1) ++above;
+  return above;
 }
 
 }  // namespace walkrad::hierarchical_detail

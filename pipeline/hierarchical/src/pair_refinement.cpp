@@ -82,10 +82,10 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   if (!lazy) {
     candidates = t.has_own ? std::move(t.own) : occluders(i, j, shaft, ex_i, ex_j, t.parent);
     listed = compact() ? candidate_count(h_.tree(), candidates, ex_i, ex_j) : candidates.size();
-    split = t.force || must_split || worth_splitting(i, j, listed > 0);
-  } else if ((si || sj) && (t.force || must_split || worth_splitting(i, j, false))) {
+    split = t.force || must_split || oracle_.worth_splitting(i, j, listed > 0);
+  } else if ((si || sj) && (t.force || must_split || oracle_.worth_splitting(i, j, false))) {
     split = true;
-  } else if ((si || sj) && worth_splitting(i, j, true) && count(1) > 0) {
+  } else if ((si || sj) && oracle_.worth_splitting(i, j, true) && count(1) > 0) {
     split = true;
   } else {
     listed = count(kManyBlockers + 1);

@@ -66,9 +66,10 @@ void each_stat(Io&& io, Stats& s) {
 void Solver::save_state(ByteWriter& out, const RoundState& round) const {
   out.put(round);
   h_.save_state(out);
-  out.put(change_), out.put(white_), out.put(direct_weights_);
-  out.put_vector(variation_), out.put_vector(left_), out.put_vector(spread_), out.put_vector(emitted_);
-  out.put_vector(weight_), out.put_vector(cube_);
+  const OracleState& o = oracle_.state();
+  out.put(change_), out.put(o.white), out.put(o.direct_weights);
+  out.put_vector(o.variation), out.put_vector(o.left), out.put_vector(o.spread), out.put_vector(o.emitted);
+  out.put_vector(o.weight), out.put_vector(cube_);
   out.put_vector(stats_.iterations);
   out.put_string(stats_.oracle);
   each_stat([&](const auto& v) { out.put(v); }, stats_);
@@ -77,9 +78,10 @@ void Solver::save_state(ByteWriter& out, const RoundState& round) const {
 Solver::RoundState Solver::load_state(ByteReader& in) {
   const auto round = in.get<RoundState>();
   h_.load_state(in);
-  change_ = in.get<double>(), white_ = in.get<double>(), direct_weights_ = in.get<bool>();
-  in.get_vector(variation_), in.get_vector(left_), in.get_vector(spread_), in.get_vector(emitted_);
-  in.get_vector(weight_), in.get_vector(cube_);
+  OracleState& o = oracle_.state();
+  change_ = in.get<double>(), o.white = in.get<double>(), o.direct_weights = in.get<bool>();
+  in.get_vector(o.variation), in.get_vector(o.left), in.get_vector(o.spread), in.get_vector(o.emitted);
+  in.get_vector(o.weight), in.get_vector(cube_);
   in.get_vector(stats_.iterations);
   stats_.oracle = in.get_string();
   each_stat([&](auto& v) { v = in.get<std::remove_reference_t<decltype(v)>>(); }, stats_);

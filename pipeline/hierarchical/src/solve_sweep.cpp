@@ -35,7 +35,7 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance, double rela
   is.emitted = is.absorbed = is.residual = Vec3{};
   is.clamped_leaves = 0;
   push_pull(h_.root(), Vec3{}, 0.0, DirectionalIrradiance{}, is);
-  if (importance_ && with_importance) {
+  if (oracle_.importance() && with_importance) {
     if (divisible_) {
       shoot_importance_exactly();
     } else {
@@ -90,6 +90,10 @@ void Solver::gather(HNode& n) {
   }
   n.H = H;
   n.Fsum = f;
+}
+
+Vec3 Solver::sent_to(const HNode& n, const Link& l) const {
+  return link_radiosity_towards(h_, l, n.center, facing_bt_, [&](uint32_t node) { return sent(s_, h_[node]); });
 }
 
 void Solver::plan_gather_blocks() {
@@ -186,7 +190,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     // nor lights through others need not converge further than what it sends into the seen ones.
     const double scale = std::max(max_component(b), change_floor_);
     if (scale > 0)
-      change_ = std::max(change_, display_weight(i) * max_component(Vec3(std::fabs(gathered.x - n.B.x), std::fabs(gathered.y - n.B.y), std::fabs(gathered.z - n.B.z))) / scale);
+      change_ = std::max(change_, oracle_.display_weight(i) * max_component(Vec3(std::fabs(gathered.x - n.B.x), std::fabs(gathered.y - n.B.y), std::fabs(gathered.z - n.B.z))) / scale);
     // The residual of the leaf's equation before this update: |E + ρH − B| A.
     const Vec3 r = b - n.B;
     is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;

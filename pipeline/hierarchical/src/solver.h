@@ -1,8 +1,11 @@
-// The hierarchical solver's state and steps (hierarchical_solver.h), private to this stage. One class,
-// its methods in a file per concept: the rounds (hierarchical_solver.cpp), the refinement of links
-// (link_refinement.cpp), their form factors and visibility (link_evaluation.cpp), and the sweeps that
-// gather and push-pull radiosity and importance (solve_sweep.cpp), and those steps as a solve whose
-// links are divided among ranks runs them (divided_solve.cpp).
+// The hierarchical solver's state and steps (hierarchical_solver.h), private to this stage. It holds two
+// parts of its own, each a class with its header: the link evaluator (link_evaluator.h: pending links
+// in, evaluated links out) and the error oracle (error_oracle.h: tolerances, and the error links leave).
+// Its own methods in a file per step: the rounds (hierarchical_solver.cpp), the refinement of links
+// (link_refinement.cpp, pair_refinement.cpp), the round's links around their evaluation
+// (round_links.cpp), the sweeps that gather and push-pull radiosity and importance (solve_sweep.cpp),
+// those steps as a solve whose links are divided among ranks runs them (divided_solve.cpp), and its
+// state between rounds (solve_checkpoint.cpp).
 #pragma once
 
 #include <array>
@@ -17,6 +20,7 @@
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/link_owners.h"
 #include "walkrad/hierarchical/transmission.h"
+#include "error_oracle.h"
 #include "link_evaluator.h"
 #include "walkrad/core/huge_pages.h"
 #include "walkrad/core/sampling.h"
@@ -78,64 +82,6 @@ class Solver {
   RoundState load_state(ByteReader& in);  // throws ByteFormatError for bytes that do not fit
 
  private:
-  // --- error_estimate.cpp: what the refinement measures, and against what ---
-
-  // The white of the display (the 95th percentile of the leaves' luminance, by area times display
-  // weight, mapped to 0.9 as the exposure does) and the walkthrough's mean importance density.
-  void update_scales();
-
-  // How much a node matters to the walkthrough, in [0, 1]: 1 without importance; with it, a leaf's
-  // importance per unit area over that of a surface the views barely see (kSeenQuantile): what the
-  // views see counts fully, what only lights it by its share; a node above leaves, their largest.
-  double display_weight(uint32_t i) const;
-  static constexpr double kSeenQuantile = 0.1;
-
-  // The error allowed in a node's radiosity (luminance, W/m²): the requested relative error of what
-  // it shows, its radiosity between kDarkShare and 1 times the white, over its display weight.
-  double tolerance(uint32_t i) const;
-
-  // variation_[i] for every node with links, in parallel: how far its children's radiosity would
-  // differ from one another if its links were gathered at the children (Link::share), ρ_c |H_c − H|
-  // at its worst child (the refinement's test); left_[i]: the RMS error that variation leaves inside
-  // the children (the estimate's share of it, see measure_left_error).
-  void measure_variation();
-
-  // spread_[i]: the range of luminance its leaves send, for every node.
-  void measure_spread();
-
-  // The error in the receiver's radiosity from taking the source's mean radiosity: its children's
-  // radiosity weighted by the kernel from the receiver against the mean (a leaf source: its own
-  // variation, half of it).
-  double source_error(const HNode& ri, const Link& l) const;
-
-  // What a node sends along its links (the gather's source term).
-  const Vec3& sent(const HNode& n) const { return s_.indirect ? n.Bt : n.emission; }
-  // What a link takes from its source: sent, or the source's children's weighed by Link::seen.
-  Vec3 link_sent(const Link& l) const;
-
-  // Whether node i's radiosity reaches the display through the final gather (HierarchicalSettings::
-  // gathered): its direct light from area emitters is evaluated at the vertices, not taken from links.
-  bool gathered(uint32_t i) const;
-  // The luminance of what a source sends that a gathered receiver takes from its links: sent less
-  // the source's own emission as sent (0 when sources send their emission alone).
-  double reflected_sent(uint32_t source) const;
-  double reflected_sent(const Link& l) const;
-
-  // Unoccluded form factor estimate from centres (Hanrahan et al.: a disc of the source's area),
-  // taking cosines as 1 when the two are close to each other's size (no trust in centre angles).
-  double transfer_estimate(const HNode& ri, const HNode& sj) const;
-
-  // A link carries too much to be left to its mean (Hanrahan, Salzman & Aupperle's BF criterion, made
-  // local): ρ_i B_j F̂_ij A_i × display weight above e × white × the quantum area. Never for a uniform
-  // source in full view (occluded: something can block between them), whose transfer the contour
-  // formula gives exactly, however much it carries: the receiver test splits it where it falls unevenly.
-  // link: the pair's link where it has been evaluated (its form factor, or for a wholly hidden one the
-  // part its rays could have missed, replaces the estimate).
-  bool worth_splitting(uint32_t i, uint32_t j, bool occluded, const Link* link = nullptr) const;
-  // The largest departure of the emitters' irradiance at a quarter of one of element i's children
-  // from that child's mean (measure_variation; Link::inner bounds it).
-  double emitted_inner(uint32_t i) const;
-
   // How many times the rays a wholly hidden link is cast again with before it counts as unresolved.
   static constexpr int kHiddenRecast = 8;
   // A link whose every ray was blocked but whose occlusion is not proven (a link proven hidden is
@@ -145,12 +91,11 @@ class Solver {
   // Hidden, not yet cast again with kHiddenRecast times the rays.
   bool recastable(const Link& l) const { return hidden(l) && l.samples > 0 && int(l.samples) < kHiddenRecast * s_.rays; }
   // Cast again and every ray still blocked, yet not proven: what passes is below 3/n of its unoccluded
-  // form factor with 95% confidence (kHiddenBound σ), so it is refined (receiver or source) while that
+  // form factor with 95% confidence (ErrorOracle::kHiddenBound σ), so it is refined (receiver or source) while that
   // much would matter (worth_splitting), and kept at 0 with its σ in the estimate once it would not.
   // Its children's links are proven hidden, see the part of the source that passes, or are left
   // smaller and unresolved.
   bool unresolved(const Link& l) const { return hidden(l) && !recastable(l); }
-  static constexpr double kHiddenBound = 3.0;
   // A link's rays double past this many candidate blockers in its shaft, and double again past kMany.
   static constexpr size_t kSomeBlockers = 4, kManyBlockers = 64;
   // Refinement stops after a round that adds fewer than 1 / kLastRoundShare of the links.
@@ -163,12 +108,6 @@ class Solver {
   // and 0.56 at 8 rooms, 0.59 and 0.58 at 32 rooms), not fast ones (a 1 m box lit by one face:
   // 0.10–0.24 but once).
   static constexpr double kSlowSweep = 0.3;
-
-  // Mean max(cos, 0) over random orientations: a cluster's mean projected area is A/4 (Sillion 1995).
-  static constexpr double kClusterCosine = 0.25;
-  // Below this share of the white, the tolerance stops falling with the radiosity (dark surfaces are
-  // held to an absolute error, not a relative one).
-  static constexpr double kDarkShare = 0.1;
 
   Vec3 transmittance(const HNode& n) const { return simulated_transmittance(h_, s_, n); }
   bool luminaire(const HNode& s) const { return walkrad::hierarchical_detail::luminaire(h_, s_, s); }
@@ -190,7 +129,7 @@ class Solver {
 
   // Whether the receiver's display needs a close pair (close_pair) split: an error as large as what it
   // shows stays within its tolerance where its display weight is under e.
-  bool close_matters(uint32_t i) const { return !importance_ || display_weight(i) >= s_.error; }
+  bool close_matters(uint32_t i) const { return !oracle_.importance() || oracle_.display_weight(i) >= s_.error; }
   // The leaves under a close pair left whole (their own links or an ancestor's): a closed scene's row
   // scaling is not applied to them (normalise_closed_rows).
   std::vector<uint8_t> under_close_pairs() const;
@@ -361,30 +300,21 @@ class Solver {
 
   double push_pull_importance(uint32_t i, double down);
 
-  // The error each node's own links leave in its radiosity (HNode::error) and the statistics.
-  void measure_left_error();
 
   Hierarchy& h_;
   const RayScene& rays_;
   const HierarchicalSettings& s_;
   HierarchicalStats& stats_;
   const LinkEvaluator evaluator_;  // the links' form factors (link_evaluator.h)
+  const double typical_area_;      // default_min_area: a 128th of the median polygon's side, squared
+  ErrorOracle oracle_;             // tolerances and the error links leave (error_oracle.h)
   double min_area_ = 0, change_ = 0, change_floor_ = 0;
   double relax_ = 1.0;  // ω of the sweep under way (solve_sweep's argument, read by push_pull)
-  double white_ = 0, seen_density_ = 0;
   uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
-  bool direct_weights_ = false;  // display weights from the direct importance R (the first refinement)
-  double quantum_area_ = 0;       // a texel of the scene's typical surface: its median polygon side / 32, squared
-  std::vector<float> variation_;  // by node (measure_variation)
-  std::vector<float> left_;       // by node (measure_variation): the RMS error its variation leaves
-  std::vector<float> spread_;     // by node: the range of its leaves' sent radiosity (measure_spread)
-  std::vector<float> emitted_;    // by node: the luminance of its leaves' emission as sent, area mean (measure_spread)
-  std::vector<float> weight_;     // by node: its display weight (update_scales)
   std::vector<DirectionalIrradiance> cube_;  // by cluster (HNode::tree_node): its own links' gather
   std::vector<double> shot_scratch_;         // by node: the importance a sweep shoots (solve_sweep)
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
-  bool importance_ = false;
   std::vector<LinkRequest> requests_;  // the round's new links, as the refinement asks for them
   PendingList pending_;                // the same, to evaluate (take_requests)
   // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,
