@@ -16,16 +16,13 @@ namespace hierarchical_detail {
 
 Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
       : h_(h), rays_(rays), s_(s), stats_(stats), evaluator_(h, rays, s), typical_area_(default_min_area(h)),
-        oracle_(h, s, typical_area_ * 16) {  // quantum area: the median polygon side / 32, squared
+        oracle_(h, s, typical_area_ * 16),  // quantum area: the median polygon side / 32, squared
+        divisible_(!indivisible_because(s)), divided_(ranks().size > 1 && !undivided_because(s)),
+        sweeps_(h, s, oracle_, SweepRanks{divided_, divisible_, [this] { share_gathered(); }, [this] { shoot_importance_exactly(); }}) {
   const HNode& root = h_[h_.root()];
   mark_two_sided_clusters();
-  divisible_ = !indivisible_because(s_);
-  divided_ = ranks().size > 1 && !undivided_because(s_);
   if (divided_) h_.owners() = divide_polygons(h_.tree(), ranks().size, ranks().rank);
   stats_.divided = divided_;
-  // Every cluster exists from the start; only they gather by direction (192 bytes each: kept by node,
-  // a 150-room level's 748,742 element roots held 144 MB of them unused). By HNode::tree_node.
-  cube_.assign(h_.cluster_count(), DirectionalIrradiance{});
   // Punctual lights: each input polygon's direct irradiance, and how much it varies over it (the
   // elements are split for it once a solve has given the tolerances: refine_for_lights).
   if (lights()) {  // every element is an input polygon's root here
@@ -35,11 +32,7 @@ Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s
   }
   min_area_ = s_.min_area > 0 ? s_.min_area : typical_area_;
   stats_.min_area = min_area_;
-  // Changes are measured relative to the leaf's radiosity, but not below 1e-9 of the brightest
-  // emitter's: a closed dark room's last traces of light decay by ρ per sweep and would keep their
-  // relative change until they underflow (3,853 sweeps in the junction scene).
-  for (const HNode& n : h_.nodes())
-    if (!n.cluster) change_floor_ = std::max(change_floor_, 1e-9 * max_component(n.emission + mul(n.rho, n.D)));
+  sweeps_.measure_change_floor();  // the punctual lights' D known
   // Importance: scaled so that Σ R = Σ A. The display weight's unit is the importance density of a
   // surface the views see barely (the 10th percentile by area over the elements they see directly):
   // every pixel's error counts the same, so a far wall is held to the error of a near floor.
@@ -128,7 +121,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     int interval = 0, wait = 0;  // sweeps between corrections, and before the next one
     const uint64_t sweeps_from = ranks_bytes_exchanged();
     CorrectionBuffers buffers;  // the round's: given back before the next round's refinement
-    if (s_.gauss_seidel) plan_gather_blocks();  // the links stay as they are through the round's sweeps
+    if (s_.gauss_seidel) sweeps_.plan_gather_blocks();  // the links stay as they are through the round's sweeps
     // Over-relaxed in the last round only, once its first sweeps have taken up the new links (from a
     // round's first sweep the direct light would be overshot too), and not for Jacobi, whose modes of
     // eigenvalue −ρF it would drive apart. It starts after two plain sweeps past those, each of which
@@ -144,13 +137,13 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
       const double omega = relax && slow >= 2 ? s_.relaxation : 1.0;
       // Importance steers the refinement, and the last round's sweeps past a round's own refine nothing
       // more: it is swept as in any round (the estimate reads it as they leave it).
-      is.change = solve_sweep(is, sweep < s_.sweeps, omega);
+      is.change = sweeps_.sweep(is, sweep < s_.sweeps, omega);
       // The correction walks every link, as a sweep does. Once the overall level is right (|c| under
       // kIdleCorrection) what is left are local modes it cannot touch: it skips 1, 2, 4, then 8 sweeps
       // between tries until it moves the level again, and always runs before the sweeps stop.
       if (correct && (wait == 0 || is.change <= s_.tolerance)) {
         double level = 0;
-        is.change = std::max(is.change, aggregation_correction(h_, change_floor_, &level, &buffers));
+        is.change = std::max(is.change, aggregation_correction(h_, sweeps_.change_floor(), &level, &buffers));
         ++stats_.corrections;
         interval = level < kIdleCorrection ? std::min(std::max(2 * interval, 1), kMaxCorrectionInterval) : 0;
         wait = interval;

@@ -67,9 +67,10 @@ void Solver::save_state(ByteWriter& out, const RoundState& round) const {
   out.put(round);
   h_.save_state(out);
   const OracleState& o = oracle_.state();
-  out.put(change_), out.put(o.white), out.put(o.direct_weights);
+  const SweepState& sw = sweeps_.state();
+  out.put(sw.change), out.put(o.white), out.put(o.direct_weights);
   out.put_vector(o.variation), out.put_vector(o.left), out.put_vector(o.spread), out.put_vector(o.emitted);
-  out.put_vector(o.weight), out.put_vector(cube_);
+  out.put_vector(o.weight), out.put_vector(sw.cube);
   out.put_vector(stats_.iterations);
   out.put_string(stats_.oracle);
   each_stat([&](const auto& v) { out.put(v); }, stats_);
@@ -79,9 +80,10 @@ Solver::RoundState Solver::load_state(ByteReader& in) {
   const auto round = in.get<RoundState>();
   h_.load_state(in);
   OracleState& o = oracle_.state();
-  change_ = in.get<double>(), o.white = in.get<double>(), o.direct_weights = in.get<bool>();
+  SweepState& sw = sweeps_.state();
+  sw.change = in.get<double>(), o.white = in.get<double>(), o.direct_weights = in.get<bool>();
   in.get_vector(o.variation), in.get_vector(o.left), in.get_vector(o.spread), in.get_vector(o.emitted);
-  in.get_vector(o.weight), in.get_vector(cube_);
+  in.get_vector(o.weight), in.get_vector(sw.cube);
   in.get_vector(stats_.iterations);
   stats_.oracle = in.get_string();
   each_stat([&](auto& v) { v = in.get<std::remove_reference_t<decltype(v)>>(); }, stats_);

@@ -1,6 +1,6 @@
-// The solve's sweeps: gather along the links, push-pull radiosity down and up the hierarchy, shoot
-// and push-pull importance (Hanrahan, Salzman & Aupperle 1991; importance: Smits, Arvo & Salesin 1992).
-#include "solver.h"
+// The solve's sweeps (sweeps.h): gather along the links, push-pull radiosity down and up the hierarchy,
+// shoot and push-pull importance (Hanrahan, Salzman & Aupperle 1991; importance: Smits, Arvo & Salesin 1992).
+#include "sweeps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,10 +12,31 @@
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/hierarchy_walk.h"
 #include "walkrad/hierarchical/link_transport.h"
+#include "walkrad/hierarchical/transmission.h"
+#include "link_evaluator.h"
 
 namespace walkrad::hierarchical_detail {
 
-double Solver::solve_sweep(IterationStats& is, bool with_importance, double relaxation) {
+Sweeps::Sweeps(Hierarchy& h, const HierarchicalSettings& s, const ErrorOracle& oracle, SweepRanks ranks)
+    : h_(h), s_(s), oracle_(oracle), ranks_(std::move(ranks)) {
+  // Every cluster exists from the start; only they gather by direction (192 bytes each: kept by node,
+  // a 150-room level's 748,742 element roots held 144 MB of them unused). By HNode::tree_node.
+  state_.cube.assign(h_.cluster_count(), DirectionalIrradiance{});
+}
+
+void Sweeps::measure_change_floor() {
+  for (const HNode& n : h_.nodes())
+    if (!n.cluster) change_floor_ = std::max(change_floor_, 1e-9 * max_component(n.emission + mul(n.rho, n.D)));
+}
+
+Vec3 Sweeps::twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
+
+double Sweeps::twin_importance(const HNode& n) const {
+  const uint32_t t = twin_node(h_, n, (*s_.twins)[n.polygon]);
+  return h_[t].area > 0 ? h_[t].I * std::min(1.0, n.area / h_[t].area) : 0.0;
+}
+
+double Sweeps::sweep(IterationStats& is, bool with_importance, double relaxation) {
   relax_ = relaxation;
   HNodes& nodes = h_.nodes();
   // What each cluster sends by direction, from the last sweep's radiosity; Gauss-Seidel sweeps then
@@ -30,14 +51,14 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance, double rela
         if (here(uint32_t(i))) gather(nodes[i]);
     });
   next_block_ = 0;
-  if (divided_) share_gathered();
-  change_ = 0;
+  if (ranks_.divided) ranks_.share_gathered();
+  state_.change = 0;
   is.emitted = is.absorbed = is.residual = Vec3{};
   is.clamped_leaves = 0;
   push_pull(h_.root(), Vec3{}, 0.0, DirectionalIrradiance{}, is);
   if (oracle_.importance() && with_importance) {
-    if (divisible_) {
-      shoot_importance_exactly();
+    if (ranks_.divisible) {
+      ranks_.shoot_importance();
     } else {
       // Sequential: sums in a fixed order. Into an array of their own, not the nodes' Ig: each link
       // adds to a source far from the last, and a node is hundreds of bytes (a cache miss each).
@@ -57,14 +78,14 @@ double Solver::solve_sweep(IterationStats& is, bool with_importance, double rela
     }
     push_pull_importance(h_.root(), 0.0);
   }
-  return change_;
+  return state_.change;
 }
 
-void Solver::gather(HNode& n) {
+void Sweeps::gather(HNode& n) {
   // One pass over the links, each source's radiosity read once. A cluster keeps its transfers by
   // direction (directional_irradiance.h); an element gives each child its share of every link
   // (Link::share). Set here so that a Jacobi sweep pushes what it gathered.
-  DirectionalIrradiance* cube = n.cluster ? &cube_[n.tree_node] : nullptr;
+  DirectionalIrradiance* cube = n.cluster ? &state_.cube[n.tree_node] : nullptr;
   if (cube) *cube = {};
   const uint32_t shared = n.cluster ? 0 : std::min<uint32_t>(n.child_count, 4);
   for (uint32_t k = 0; k < n.child_count; ++k) {
@@ -92,16 +113,16 @@ void Solver::gather(HNode& n) {
   n.Fsum = f;
 }
 
-Vec3 Solver::sent_to(const HNode& n, const Link& l) const {
+Vec3 Sweeps::sent_to(const HNode& n, const Link& l) const {
   return link_radiosity_towards(h_, l, n.center, facing_bt_, [&](uint32_t node) { return sent(s_, h_[node]); });
 }
 
-void Solver::plan_gather_blocks() {
+void Sweeps::plan_gather_blocks() {
   // The nodes that gather in the walk's order (push_pull: a node, then its children in turn): each
   // cluster, and each polygon's whole element tree at once (its elements gather from other polygons
   // only). A polygon's nodes change when the walk pushes it; a cluster's value (Bt, facing_bt_, its
   // parts') when the walk leaves it, after every item below it.
-  std::vector<uint32_t> items, first(cube_.size()), last(cube_.size());
+  std::vector<uint32_t> items, first(state_.cube.size()), last(state_.cube.size());
   std::vector<uint32_t> polygon_item(h_.scene().polygons.size(), UINT32_MAX);
   std::vector<uint32_t> stack{h_.root()};
   while (!stack.empty()) {
@@ -157,14 +178,14 @@ void Solver::plan_gather_blocks() {
   block_start_.push_back(block_nodes_.size());
 }
 
-void Solver::gather_block(size_t b) {
+void Sweeps::gather_block(size_t b) {
   // Each node writes its own H and its children's Hp and reads only what push_pull writes.
   tbb::parallel_for(tbb::blocked_range<size_t>(block_start_[b], block_start_[b + 1], 16), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end(); ++k) gather(h_[block_nodes_[k]]);
   });
 }
 
-Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {
+Vec3 Sweeps::push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is) {
   // The walk reaches a block at its first node (plan_gather_blocks).
   if (s_.gauss_seidel && next_block_ + 1 < block_start_.size() && block_nodes_[block_start_[next_block_]] == i)
     gather_block(next_block_++);
@@ -175,7 +196,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     bool clamped = false;
     H = leaf_irradiance(n, H, row_sum, &clamped);
     if (clamped) ++is.clamped_leaves;
-    const Vec3 tau = transmittance(n);
+    const Vec3 tau = simulated_transmittance(h_, s_, n);
     const Vec3 through = tau == Vec3{} ? Vec3{} : mul(tau, twin_irradiance(n));
     auto radiosity = [&](const Vec3& irradiance) { return n.emission + mul(n.rho, irradiance + n.D) + through; };
     const Vec3 gathered = radiosity(H);
@@ -190,7 +211,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
     // nor lights through others need not converge further than what it sends into the seen ones.
     const double scale = std::max(max_component(b), change_floor_);
     if (scale > 0)
-      change_ = std::max(change_, oracle_.display_weight(i) * max_component(Vec3(std::fabs(gathered.x - n.B.x), std::fabs(gathered.y - n.B.y), std::fabs(gathered.z - n.B.z))) / scale);
+      state_.change = std::max(state_.change, oracle_.display_weight(i) * max_component(Vec3(std::fabs(gathered.x - n.B.x), std::fabs(gathered.y - n.B.y), std::fabs(gathered.z - n.B.z))) / scale);
     // The residual of the leaf's equation before this update: |E + ρH − B| A.
     const Vec3 r = b - n.B;
     is.residual += Vec3(std::fabs(r.x), std::fabs(r.y), std::fabs(r.z)) * n.area;
@@ -204,7 +225,7 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   const uint32_t count = n.child_count;
   const double area = n.area;
   DirectionalIrradiance total = cube;
-  if (n.cluster) total += cube_[n.tree_node];
+  if (n.cluster) total += state_.cube[n.tree_node];
   for (uint32_t k = 0; k < count; ++k) {
     const uint32_t c = h_.child(h_[i], k);
     const HNode& child = h_[c];
@@ -226,13 +247,13 @@ Vec3 Solver::push_pull(uint32_t i, const Vec3& down, double down_sum, const Dire
   return h_[i].B;
 }
 
-double Solver::push_pull_importance(uint32_t i, double down) {
+double Sweeps::push_pull_importance(uint32_t i, double down) {
   const double total = h_[i].Ig + down;
   if (h_[i].child_count == 0) {
     // Importance passes through a transmitting surface as light does, τ of it to the twin at the
     // same place: what lights the inside of a shade is seen through it (lamp-room: the shade's inside,
     // seen by no viewpoint, stayed one element a face and its outside took that element's mean).
-    const Vec3 tau = transmittance(h_[i]);
+    const Vec3 tau = simulated_transmittance(h_, s_, h_[i]);
     const double through = max_component(tau) > 0 ? luminance(tau) * twin_importance(h_[i]) : 0.0;
     return h_[i].I = h_[i].R + total + through;
   }

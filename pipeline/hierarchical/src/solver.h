@@ -1,10 +1,9 @@
-// The hierarchical solver's state and steps (hierarchical_solver.h), private to this stage. It holds two
+// The hierarchical solver's state and steps (hierarchical_solver.h), private to this stage. It holds three
 // parts of its own, each a class with its header: the link evaluator (link_evaluator.h: pending links
-// in, evaluated links out) and the error oracle (error_oracle.h: tolerances, and the error links leave).
-// Its own methods in a file per step: the rounds (hierarchical_solver.cpp), the refinement of links
-// (link_refinement.cpp, pair_refinement.cpp), the round's links around their evaluation
-// (round_links.cpp), the sweeps that gather and push-pull radiosity and importance (solve_sweep.cpp),
-// those steps as a solve whose links are divided among ranks runs them (divided_solve.cpp), and its
+// in, evaluated links out), the error oracle (error_oracle.h: tolerances, and the error links leave) and
+// the sweeps (sweeps.h: gather, push-pull, importance). Its own methods in a file per step: the rounds
+// (hierarchical_solver.cpp), the refinement of links (link_refinement.cpp, pair_refinement.cpp), the
+// round's links around their evaluation (round_links.cpp), those steps as a solve whose links are divided among ranks runs them (divided_solve.cpp), and its
 // state between rounds (solve_checkpoint.cpp).
 #pragma once
 
@@ -22,6 +21,7 @@
 #include "walkrad/hierarchical/transmission.h"
 #include "error_oracle.h"
 #include "link_evaluator.h"
+#include "sweeps.h"
 #include "walkrad/core/huge_pages.h"
 #include "walkrad/core/sampling.h"
 #include "walkrad/visibility/shaft.h"
@@ -111,12 +111,6 @@ class Solver {
 
   Vec3 transmittance(const HNode& n) const { return simulated_transmittance(h_, s_, n); }
   bool luminaire(const HNode& s) const { return walkrad::hierarchical_detail::luminaire(h_, s_, s); }
-  Vec3 twin_irradiance(const HNode& n) const { return twin_received(h_, n, (*s_.twins)[n.polygon]); }
-  // The importance of the twin's node at n's place, by n's share of its area (as last pushed).
-  double twin_importance(const HNode& n) const {
-    const uint32_t t = twin_node(h_, n, (*s_.twins)[n.polygon]);
-    return h_[t].area > 0 ? h_[t].I * std::min(1.0, n.area / h_[t].area) : 0.0;
-  }
   const std::vector<PunctualLight>* lights() const { return simulated_lights(s_); }
 
   // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
@@ -263,42 +257,6 @@ class Solver {
   void store_links(PendingList& list);
 
 
-  // One sweep: gather along the links, push-pull radiosity, shoot and push-pull importance (unless
-  // with_importance is false). Jacobi gathers every node from the previous sweep's radiosity;
-  // Gauss-Seidel gathers each input polygon's quadtree just before pushing it down, so it sees what
-  // the polygons before it got this sweep, and each cluster as the walk reaches it. Returns the
-  // largest relative change of a leaf's radiosity, weighed by its display weight.
-  // ω: the over-relaxation of the leaves' gathered irradiance (1: a plain Gauss-Seidel or Jacobi sweep).
-  double solve_sweep(IterationStats& is, bool with_importance = true, double relaxation = 1.0);
-
-  // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well
-  // above 1 receives more than any enclosure could send it: coincident surfaces in the input (two
-  // lamp shades in one place: S = 3.5 in the MGF hospital) create power there and make the iteration
-  // diverge. Its irradiance is scaled back to a row sum of 1. Row sums slightly above 1 are left: near
-  // corners pushed averages overstate some leaves and understate others (up to 1.24 in the furnace),
-  // and clamping only one side would lose power.
-  void gather(HNode& n);
-
-  // Gauss-Seidel gathers in blocks (plan_gather_blocks, made once a round): runs of the clusters and
-  // polygons that gather, in the walk's order, none of whose links reads what the walk changes within
-  // the run. A block's nodes gather in parallel at its start; any thread count gives the same bytes.
-  void plan_gather_blocks();
-  void gather_block(size_t b);
-  std::vector<uint32_t> block_nodes_;  // every node that gathers, block by block
-  // Block b's nodes: [block_start_[b], block_start_[b + 1]); the walk reaches the block at its first.
-  std::vector<size_t> block_start_;
-  size_t next_block_ = 0;
-  // Each cluster's Bt by the way its surfaces face (cluster_radiosity.h), set at each sweep's start.
-  std::vector<std::array<Vec3, 6>> facing_bt_;
-  // What link l of receiver n takes from its source this sweep: a cluster source's radiosity towards n
-  // (its parts' where the link saw them unevenly: Link::seen), an element's Bt.
-  Vec3 sent_to(const HNode& n, const Link& l) const;
-
-  // down, down_sum: what the element ancestors' links push here; cube: what the cluster ancestors'
-  // links hold by direction (taken by the first element below them).
-  Vec3 push_pull(uint32_t i, const Vec3& down, double down_sum, const DirectionalIrradiance& cube, IterationStats& is);
-
-  double push_pull_importance(uint32_t i, double down);
 
 
   Hierarchy& h_;
@@ -308,11 +266,8 @@ class Solver {
   const LinkEvaluator evaluator_;  // the links' form factors (link_evaluator.h)
   const double typical_area_;      // default_min_area: a 128th of the median polygon's side, squared
   ErrorOracle oracle_;             // tolerances and the error links leave (error_oracle.h)
-  double min_area_ = 0, change_ = 0, change_floor_ = 0;
-  double relax_ = 1.0;  // ω of the sweep under way (solve_sweep's argument, read by push_pull)
+  double min_area_ = 0;
   uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
-  std::vector<DirectionalIrradiance> cube_;  // by cluster (HNode::tree_node): its own links' gather
-  std::vector<double> shot_scratch_;         // by node: the importance a sweep shoots (solve_sweep)
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
   std::vector<LinkRequest> requests_;  // the round's new links, as the refinement asks for them
@@ -323,12 +278,13 @@ class Solver {
   std::deque<std::vector<uint32_t>> queued_lists_;
   // Jacobi sweeps, no closure balance, no transmission: the steps that read links run as a divided
   // solve runs them, whatever the rank count, so that its result is the same (link_owners.h).
-  bool divisible_ = false;
-  bool divided_ = false;   // divisible, over several ranks, no checkpoints: links divided among ranks
+  const bool divisible_;
+  const bool divided_;   // divisible, over several ranks, no checkpoints: links divided among ranks
   uint64_t elsewhere_ = 0; // this round's new links whose receivers another rank holds
   std::vector<uint8_t> two_sided_;  // by node: a cluster holding a transmitting polygon or a twin
   static thread_local std::vector<uint8_t> blocked_scratch_;
   static thread_local std::vector<RayScene::Segment> probe_scratch_;
+  Sweeps sweeps_;  // the transport (sweeps.h): made last, it reads the division above
 };
 
 }  // namespace walkrad::hierarchical_detail
