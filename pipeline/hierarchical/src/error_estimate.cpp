@@ -184,7 +184,7 @@ void ErrorOracle::measure_variation() {
         squares += rho * rho * (Gc[k] - G) * (Gc[k] - G);
       }
       // And inside the children, for the luminaires' links (emitters, and shades lit by punctual lights
-      // inside: Solver::luminaire): a lamp 2 mm under a ceiling lights a wall most two thirds of the
+      // inside: luminaire(), link_evaluator.h): a lamp 2 mm under a ceiling lights a wall most two thirds of the
       // way up and its top metre hardly at all, a peak inside each quadrant of the wall that the
       // shares flatten (test AWallUnderAGrazingLampKeepsItsProfileAtACoarseError).
       // Σ inner bounds it; where the bound passes the tolerance, the luminaires' irradiance is taken at

@@ -25,7 +25,7 @@
 namespace walkrad {
 
 // A leaf's row sum well above 1 means it receives more than any enclosure could send it (coincident
-// surfaces in the input): its irradiance is scaled back to a row sum of 1. See Solver::gather (src/solver.h).
+// surfaces in the input): its irradiance is scaled back to a row sum of 1. See Sweeps::gather (src/sweeps.h).
 // Balanced leaves are exempt: their factors make a Σ F s exactly 1, whatever a Σ F is (a receive
 // factor of 2.6 against sources sending 0.38 would be clamped as coincident and lose that light).
 constexpr double kMaxRowSum = 1.5;
