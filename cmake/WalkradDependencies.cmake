@@ -11,7 +11,7 @@ if(WALKRAD_BUILD_PIPELINE)
   find_package(embree 3 CONFIG REQUIRED)
   find_package(meshoptimizer CONFIG REQUIRED)
   find_package(CLI11 CONFIG REQUIRED)
-  # Open MPI (issue 28: a bake over several ranks); the runtime never links it.
+  # Open MPI (a bake over several ranks: walkrad/core/ranks.h); the runtime never links it.
   find_package(MPI REQUIRED COMPONENTS CXX)
   # OpenVDB (the extinction grid of volume clusters) ships only a Find module, which sets
   # BUILD_SHARED_LIBS=ON in the caller's scope and needs Boost iostreams: keep ours.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes "dense hedge", walkrad's example of volumetric visibility (issue 7), as a binary glTF (.glb)
+"""Writes "dense hedge", walkrad's example of volumetric visibility, as a binary glTF (.glb)
 and the walkthrough that looks at its wall.
 
 An open stage (z up, metres): a 6 x 4 m floor, a 4 x 3 m wall at x = 6 facing the light, and between

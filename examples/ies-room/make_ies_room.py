@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes "IES room", walkrad's example of luminaires described by IES LM-63 photometric files (issue 24).
+"""Writes "IES room", walkrad's example of luminaires described by IES LM-63 photometric files.
 
 A closed 6 x 4 x 2.8 m room (z up, metres) lit only by three luminaires (glTF EXT_lights_ies):
 - two recessed downlights in the ceiling, aimed straight down: downlight.ies, type C, rotationally

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes "lamp room", walkrad's example of the effects a scene can call for (issue 10), as glTF 2.0.
+"""Writes "lamp room", walkrad's example of the effects a scene can call for, as glTF 2.0.
 
 A closed 5 x 4 x 3 m room (z up, metres) lit only by punctual lights (KHR_lights_punctual): a 20 W/sr
 bulb inside a translucent lampshade (KHR_materials_diffuse_transmission: factor 0.5, reflectance

@@ -1,4 +1,4 @@
-// The web viewer in headless Chromium (issue 25): Debian's chromium driven by playwright-core, WebGL
+// The web viewer in headless Chromium: Debian's chromium driven by playwright-core, WebGL
 // on SwiftShader, every file served from disk through the page's routes (no server, no network).
 // For each bake given:
 //  - no console error and no page error;
