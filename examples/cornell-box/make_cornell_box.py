@@ -10,12 +10,12 @@ one (35 mm lens on 25 mm film, from (278, 273, -800) looking along +z).
 Usage: make_cornell_box.py [OUT.gltf | OUT.glb]   (default: cornell-box.gltf beside this script)
 The output is deterministic: a test regenerates it and compares it with the committed file.
 """
+import argparse
 import base64
 import json
 import math
 import os
 import struct
-import sys
 
 MM = 0.001
 
@@ -82,7 +82,10 @@ def write_glb(path, doc, blob):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "cornell-box.gltf")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out", nargs="?", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "cornell-box.gltf"),
+                    help="OUT.gltf or OUT.glb (default: cornell-box.gltf beside this script)")
+    out = ap.parse_args().out
     surfaces = list(ROOM)
     for name, top in BLOCKS:
         for i, quad in enumerate(block_quads(top)):

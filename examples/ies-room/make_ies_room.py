@@ -13,12 +13,12 @@ A camera in a corner looks at the lit wall. Deterministic.
 Usage: make_ies_room.py [OUT_DIR]   (default: beside this script: ies-room.gltf, downlight.ies,
 wall-washer.ies)
 """
+import argparse
 import base64
 import json
 import math
 import os
 import struct
-import sys
 
 
 def profile(lines, vertical, horizontal, candela):
@@ -151,7 +151,10 @@ def write(out_dir):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out_dir", nargs="?", default=os.path.dirname(os.path.abspath(__file__)),
+                    help="folder for ies-room.gltf and its IES files (default: beside this script)")
+    out = ap.parse_args().out_dir
     os.makedirs(out, exist_ok=True)
     write(out)
 

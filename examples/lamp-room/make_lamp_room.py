@@ -10,12 +10,12 @@ A camera looks in from a corner. With --empty: the bare room and the bulb only, 
 Usage: make_lamp_room.py [--empty] [OUT.gltf]   (default: lamp-room.gltf or lamp-room-empty.gltf beside this
 script). Deterministic.
 """
+import argparse
 import base64
 import json
 import math
 import os
 import struct
-import sys
 
 WALL, FLOOR, TABLE, SHADE = 0, 1, 2, 3
 MATERIALS = [
@@ -115,10 +115,13 @@ def write(path, empty):
 
 
 def main():
-    args = [a for a in sys.argv[1:] if a != "--empty"]
-    empty = "--empty" in sys.argv[1:]
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out", nargs="?", help="OUT.gltf (default: lamp-room.gltf, or lamp-room-empty.gltf, beside this script)")
+    ap.add_argument("--empty", action="store_true", help="the room without its lamp")
+    a = ap.parse_args()
+    empty = a.empty
     here = os.path.dirname(os.path.abspath(__file__))
-    out = args[0] if args else os.path.join(here, "lamp-room-empty.gltf" if empty else "lamp-room.gltf")
+    out = a.out or os.path.join(here, "lamp-room-empty.gltf" if empty else "lamp-room.gltf")
     write(out, empty)
 
 
