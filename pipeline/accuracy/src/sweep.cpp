@@ -210,6 +210,7 @@ void write_text(const std::string& path, const std::string& text) {
 // (--reference) read back; written to the sweep's folder with the images and reference-points.csv.
 struct SweepReference {
   ReferenceSet points, image;
+  ErrorMeasures ci, image_ci;  // the reference's own error bars (reference_error_bar)
   json images = json::array();
   size_t view_count = 0;
 };
@@ -270,6 +271,8 @@ SweepReference make_reference(const SweepSettings& s, const Scene& scene, const 
   }
   save_reference(out.path("reference.bin"), key, ref.points, ref.image);
   write_reference_files(out, ref);
+  ref.ci = reference_error_bar(ref.points.luminance, ref.points.standard_error, ref.points.weight);
+  ref.image_ci = reference_error_bar(ref.image.luminance, ref.image.standard_error, ref.image.weight);
   return ref;
 }
 
@@ -304,8 +307,8 @@ json measure_run(const SweepSettings& s, const Run& run, const SweepReference& r
   at_points = sample_bake(bake, points, tolerance);
   const ErrorMeasures e = relative_errors(at_points, points.luminance, points.weight);
   const ErrorMeasures ie = relative_errors(sample_bake(bake, ref.image, tolerance), ref.image.luminance, ref.image.weight);
-  const ErrorMeasures ci = reference_error_bar(points.luminance, points.standard_error, points.weight);
-  const ErrorMeasures image_ci = reference_error_bar(ref.image.luminance, ref.image.standard_error, ref.image.weight);
+  const ErrorMeasures& ci = ref.ci;
+  const ErrorMeasures& image_ci = ref.image_ci;
   json phases = json::object();
   for (const json& ph : report.at("phases")) phases[ph.at("name").get<std::string>()] = ph.at("seconds");
   json rec = {{"name", run.name}, {"method", run.method},
@@ -377,8 +380,8 @@ SweepSummary run_sweep(const SweepSettings& s) {
   const RayScene rays(scene);
   const SweepReference ref = make_reference(s, scene, rays, views, out, log);
   const ReferenceSet& points = ref.points;
-  const ErrorMeasures ci = reference_error_bar(points.luminance, points.standard_error, points.weight);
-  const ErrorMeasures image_ci = reference_error_bar(ref.image.luminance, ref.image.standard_error, ref.image.weight);
+  const ErrorMeasures& ci = ref.ci;
+  const ErrorMeasures& image_ci = ref.image_ci;
   const std::vector<std::string> surfaces = surface_names(scene, rays, points, diagonal);
 
   // The bakes, one child process each.

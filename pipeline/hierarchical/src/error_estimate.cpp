@@ -28,7 +28,7 @@
 
 namespace walkrad::hierarchical_detail {
 
-ErrorOracle::ErrorOracle(const Hierarchy& h, const HierarchicalSettings& s, double quantum_area)
+ErrorOracle::ErrorOracle(Hierarchy& h, const HierarchicalSettings& s, double quantum_area)
     : h_(h), s_(s), quantum_area_(quantum_area) {}
 
 void ErrorOracle::weigh_by_importance(double seen_density) {
@@ -306,14 +306,13 @@ double ErrorOracle::source_error(const HNode& ri, const Link& l, const std::func
   return std::max(seen_parts, hidden);
 }
 
-uint64_t ErrorOracle::measure_left_error(Hierarchy& h, const std::function<bool(uint32_t)>& here,
-                                         const std::function<bool(uint32_t)>& splittable) {
+uint64_t ErrorOracle::measure_left_error(const std::function<bool(uint32_t)>& here, const std::function<bool(uint32_t)>& splittable) {
   update_scales();
   measure_variation();
   // Each node's own (nodes in parallel: each writes its own error).
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(h_.nodes().size()), 1024), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t i = r.begin(); i != r.end(); ++i) {
-      HNode& n = h[i];
+      HNode& n = h_[i];
       if (!here(i)) continue;  // its holder's, below
       if (n.links.empty()) {
         n.error = 0;
@@ -332,8 +331,8 @@ uint64_t ErrorOracle::measure_left_error(Hierarchy& h, const std::function<bool(
       n.error = float(std::sqrt(sq));
     }
   });
-  share_element_values<float>(h, [&](uint32_t i) { return h[i].error; },
-                              [&](uint32_t i, float e) { h[i].error = e; });
+  share_element_values<float>(h_, [&](uint32_t i) { return h_[i].error; },
+                              [&](uint32_t i, float e) { h_[i].error = e; });
   uint64_t above = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
     if (h_[i].error / std::max(tolerance(i), 1e-300) > 1) ++above;

@@ -33,9 +33,9 @@ inline const Vec3& sent(const HierarchicalSettings& s, const HNode& n) { return 
 
 class ErrorOracle {
  public:
-  // The hierarchy and the settings must outlive the oracle. quantum_area: a texel of the scene's typical
-  // surface (worth_splitting).
-  ErrorOracle(const Hierarchy& h, const HierarchicalSettings& s, double quantum_area);
+  // The hierarchy and the settings must outlive the oracle; it writes only HNode::error
+  // (measure_left_error). quantum_area: a texel of the scene's typical surface (worth_splitting).
+  ErrorOracle(Hierarchy& h, const HierarchicalSettings& s, double quantum_area);
 
   // Display weights from the walkthrough's importance, in units of seen_density: the importance per unit
   // area of a surface the views barely see (kSeenQuantile of the seen area is seen less). Without this
@@ -77,12 +77,10 @@ class ErrorOracle {
   // for n rays) with 95% confidence: the "rule of three".
   static constexpr double kHiddenBound = 3.0;
 
-  // update_scales, measure_variation, then each node's own error (HNode::error, written into h, the
-  // hierarchy the oracle reads) where here(i) (the rank holding its links; the others' are shared);
+  // update_scales, measure_variation, then each node's own error (HNode::error) where here(i) (the rank holding its links; the others' are shared);
   // splittable: whether a leaf source can still split (one that cannot has no finer parts to err by).
   // Returns how many nodes exceed their tolerance.
-  uint64_t measure_left_error(Hierarchy& h, const std::function<bool(uint32_t)>& here,
-                              const std::function<bool(uint32_t)>& splittable);
+  uint64_t measure_left_error(const std::function<bool(uint32_t)>& here, const std::function<bool(uint32_t)>& splittable);
 
  private:
   // spread and emitted: the range of luminance a node's leaves send, for every node.
@@ -119,7 +117,7 @@ class ErrorOracle {
   // held to an absolute error, not a relative one).
   static constexpr double kDarkShare = 0.1;
 
-  const Hierarchy& h_;
+  Hierarchy& h_;
   const HierarchicalSettings& s_;
   const double quantum_area_;
   bool importance_ = false;

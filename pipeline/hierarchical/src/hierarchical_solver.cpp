@@ -165,8 +165,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     if (done) break;
   }
   // The error each node's own links leave in its radiosity (HNode::error) and the statistics.
-  stats_.above_tolerance += oracle_.measure_left_error(h_, [&](uint32_t i) { return here(i); },
-                                                      [&](uint32_t i) { return splittable(i); });
+  stats_.above_tolerance +=
+      oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return splittable(i); });
   stats_.white = oracle_.state().white;
   rank_work().links_held = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)

@@ -36,11 +36,6 @@ thread_local std::vector<uint8_t> quadrant_scratch;
 
 }  // namespace
 
-Vec3 simulated_transmittance(const Hierarchy& h, const HierarchicalSettings& s, const HNode& n) {
-  if (!s.twins || n.cluster || (*s.twins)[n.polygon] == kNoTwin) return {};
-  return material_transmittance(h, n);
-}
-
 bool luminaire(const Hierarchy& h, const HierarchicalSettings& s, const HNode& n) {
   return !n.cluster &&
          (max_component(n.emission) > 0 || (simulated_lights(s) && max_component(simulated_transmittance(h, s, n)) > 0));

@@ -13,6 +13,7 @@
 #include "walkrad/core/sampling.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy.h"
+#include "walkrad/hierarchical/transmission.h"
 #include "walkrad/visibility/occlusion_proof.h"
 #include "walkrad/visibility/ray_scene.h"
 
@@ -56,8 +57,12 @@ using PendingList = HugeVector<Pending>;
 inline const std::vector<PunctualLight>* simulated_lights(const HierarchicalSettings& s) {
   return s.lights && !s.lights->empty() ? s.lights : nullptr;
 }
-// τ of an element's material when transmission is simulated (else 0).
-Vec3 simulated_transmittance(const Hierarchy& h, const HierarchicalSettings& s, const HNode& n);
+// τ of an element's material when transmission is simulated (else 0). Inline: the sweeps ask it of
+// every leaf, and most have no twin.
+inline Vec3 simulated_transmittance(const Hierarchy& h, const HierarchicalSettings& s, const HNode& n) {
+  if (!s.twins || n.cluster || (*s.twins)[n.polygon] == kNoTwin) return {};
+  return material_transmittance(h, n);
+}
 // Whether a source acts as a lamp, its light set before the solve: it emits, or its material passes on
 // what punctual lights give its back (a lamp's shade, lit from inside). Its links keep how their
 // transfer varies inside the receiver's children (Link::inner): the table 10 cm under lamp-room's

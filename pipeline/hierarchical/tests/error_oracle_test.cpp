@@ -3,38 +3,18 @@
 // wholly hidden link is held to. Hand-made hierarchies with hand-set radiosity and links: the
 // arithmetic of error_estimate.cpp, checked against the numbers worked out here.
 #include <cmath>
-#include <memory>
 
 #include <gtest/gtest.h>
 
 #include "error_oracle.h"
-#include "walkrad/scene/cluster_tree.h"
-#include "walkrad/testing/howell_catalogue.h"
-#include "walkrad/testing/test_scenes.h"
+#include "two_squares.h"
 
 namespace walkrad::hierarchical_detail {
 namespace {
 
-// Two parallel unit squares a metre apart (grey, ρ = 0.5), their radiosity set by hand.
-struct TwoSquares {
-  Scene scene;
-  ClusterTree tree;
-  std::unique_ptr<Hierarchy> h;
-  HierarchicalSettings settings;
-  uint32_t lower = 0, upper = 0;
-
-  TwoSquares() {
-    scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
-    const test::RectanglePair pair = test::parallel_rectangles(1.0, 1.0, 1.0);
-    scene.polygons = {pair.first, pair.second};
-    tree = build_cluster_tree(scene);
-    h = std::make_unique<Hierarchy>(scene, tree);
-    lower = h->polygon_root(0);
-    upper = h->polygon_root(1);
-  }
-  void shine(uint32_t node, double b) {
-    (*h)[node].B = (*h)[node].Bt = Vec3(b, b, b);
-  }
+// The two squares (two_squares.h), neither emitting, their radiosity set by hand.
+struct TwoSquares : test::TwoSquares {
+  void shine(uint32_t node, double b) { (*h)[node].B = (*h)[node].Bt = Vec3(b, b, b); }
 };
 
 TEST(ErrorOracle, TolerancesFollowWhatEachSurfaceShows) {

@@ -2,38 +2,22 @@
 // fixed point, against the 2 × 2 radiosity system solved in closed form; Gauss-Seidel and Jacobi
 // reach the same one, and a sweep's energy terms are what the leaves' equations say.
 #include <cmath>
-#include <memory>
+#include <utility>
 
 #include <gtest/gtest.h>
 
 #include "sweeps.h"
-#include "walkrad/scene/cluster_tree.h"
-#include "walkrad/testing/howell_catalogue.h"
-#include "walkrad/testing/test_scenes.h"
+#include "two_squares.h"
 
 namespace walkrad::hierarchical_detail {
 namespace {
 
-// Two parallel unit squares a metre apart (ρ = 0.5), the lower emitting E = 1, linked both ways with
-// Howell's C-11 form factor (equal areas: F12 = F21).
-struct LinkedSquares {
-  Scene scene;
-  ClusterTree tree;
-  std::unique_ptr<Hierarchy> h;
-  HierarchicalSettings settings;
-  uint32_t lower = 0, upper = 0;
+// The two squares, the lower emitting E = 1, linked both ways with Howell's C-11 form factor (equal
+// areas: F12 = F21).
+struct LinkedSquares : test::TwoSquares {
   double F = test::howell_c11(1.0, 1.0, 1.0);
 
-  LinkedSquares() {
-    scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
-    scene.materials.push_back({"lamp", {0.5, 0.5, 0.5}, {1, 1, 1}});
-    const test::RectanglePair pair = test::parallel_rectangles(1.0, 1.0, 1.0);
-    scene.polygons = {pair.first, pair.second};
-    scene.polygons[0].material = 1;
-    tree = build_cluster_tree(scene);
-    h = std::make_unique<Hierarchy>(scene, tree);
-    lower = h->polygon_root(0);
-    upper = h->polygon_root(1);
+  LinkedSquares() : TwoSquares(1.0) {
     for (const auto& [to, from] : {std::pair{lower, upper}, std::pair{upper, lower}}) {
       Link l;
       l.F = float(F);
