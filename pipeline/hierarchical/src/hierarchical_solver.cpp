@@ -17,22 +17,13 @@ namespace hierarchical_detail {
 Solver::Solver(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats)
       : h_(h), rays_(rays), s_(s), stats_(stats), evaluator_(h, rays, s), typical_area_(default_min_area(h)),
         oracle_(h, s, typical_area_ * 16),  // quantum area: the median polygon side / 32, squared
-        divisible_(!indivisible_because(s)), divided_(ranks().size > 1 && !undivided_because(s)),
-        sweeps_(h, s, oracle_, SweepRanks{divided_, divisible_, [this] { share_gathered(); }, [this] { shoot_importance_exactly(); }}) {
+        division_{!indivisible_because(s), ranks().size > 1 && !undivided_because(s)},
+        refinement_(h, rays, s, stats, oracle_, division_, typical_area_),  // the punctual lights' D known
+        sweeps_(h, s, oracle_, division_) {
   const HNode& root = h_[h_.root()];
-  mark_two_sided_clusters();
-  if (divided_) h_.owners() = divide_polygons(h_.tree(), ranks().size, ranks().rank);
-  stats_.divided = divided_;
-  // Punctual lights: each input polygon's direct irradiance, and how much it varies over it (the
-  // elements are split for it once a solve has given the tolerances: refine_for_lights).
-  if (lights()) {  // every element is an input polygon's root here
-    for (uint32_t i = 0; i < h_.nodes().size(); ++i)
-      if (!h_[i].cluster) light_frontier_.push_back(i);
-    light_spread_ = direct_for(light_frontier_);
-  }
-  min_area_ = s_.min_area > 0 ? s_.min_area : typical_area_;
-  stats_.min_area = min_area_;
-  sweeps_.measure_change_floor();  // the punctual lights' D known
+  if (division_.divided) h_.owners() = divide_polygons(h_.tree(), ranks().size, ranks().rank);
+  stats_.divided = division_.divided;
+  sweeps_.measure_change_floor();  // the punctual lights' D known (the refinement's constructor)
   // Importance: scaled so that Σ R = Σ A. The display weight's unit is the importance density of a
   // surface the views see barely (the 10th percentile by area over the elements they see directly):
   // every pixel's error counts the same, so a far wall is held to the error of a near floor.
@@ -70,39 +61,41 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   bool& converged_before = state.converged_before;
   for (int it = state.next_round; !state.finished && it < s_.max_iterations; ++it) {
     IterationStats is;
-    const uint64_t before = new_link_count();
+    const uint64_t before = refinement_.new_link_count();
     const size_t elements_before = h_.element_count();
     if (it == 0) {
       if (oracle_.importance()) {  // the close-pair rule weighs by direct importance (close_matters)
         oracle_.state().direct_weights = true;
         oracle_.update_scales();
       }
-      refine_first();  // as high as links may go: the error is measured from round 1
+      refinement_.refine_first();  // as high as links may go: the error is measured from round 1
     } else {
       oracle_.state().direct_weights = it == 1;
       if (it == 1) {
         oracle_.update_scales();
-        refine_for_lights();
+        refinement_.refine_for_lights();
       }
-      refine_existing();
+      oracle_.update_scales();
+      oracle_.measure_variation();
+      refinement_.refine_existing();
     }
     if (s_.check_limits) s_.check_limits("refinement", 0);
     // The refinement's lists, made by both threads: without this the 150-room level held 0.7 GB
     // more after its solve once its decisions were made in parallel.
     release_free_memory();
-    if (lights()) compute_missing_direct();  // elements the refinement created
-    is.new_links = new_link_count() - before;
+    if (lights()) refinement_.compute_missing_direct();  // elements the refinement created
+    is.new_links = refinement_.new_link_count() - before;
     note_link_memory();
     evaluate_pending(is);
     release_free_memory();
     // Divided: the polygons dealt again by the links of the first rounds that link elements (the later
     // rounds refine where these are; the first deal, blind, left office-floor's 32 rooms 57/43%).
-    if (divided_ && it >= 1) rebalance_links(h_);
+    if (division_.divided && it >= 1) rebalance_links(h_);
     note_link_memory();
     if (s_.check_limits) s_.check_limits("link evaluation", 0);
     if (s_.closed && is.new_links > 0) balance_closed();  // factors and B must match at the end
     if (s_.closed_rows && !s_.closed && is.new_links > 0) {
-      const std::vector<uint8_t> unscaled = under_close_pairs();
+      const std::vector<uint8_t> unscaled = refinement_.under_close_pairs();
       stats_.balance_unbalanced = normalise_closed_rows(h_, &stats_.mean_row_sum, &unscaled);
     }
     const bool settled = is.new_links == 0 && h_.element_count() == elements_before;  // (lights split elements too)
@@ -129,7 +122,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     // oscillate with 1 − ω instead (a 2 m box lit by one face: 8 sweeps plain, 18 over-relaxed from
     // the third), and one sweep's ratio can be the correction's (a 1 m one: 0.10, then 1.10, then
     // 0.17). Should the change rise two sweeps running, plain again.
-    bool relax = last && s_.gauss_seidel && !divided_ && s_.relaxation != 1.0;
+    bool relax = last && s_.gauss_seidel && !division_.divided && s_.relaxation != 1.0;
     int rises = 0, slow = 0;
     double before_change = 0;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
@@ -166,7 +159,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   }
   // The error each node's own links leave in its radiosity (HNode::error) and the statistics.
   stats_.above_tolerance +=
-      oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return splittable(i); });
+      oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
   stats_.white = oracle_.state().white;
   rank_work().links_held = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
@@ -205,9 +198,6 @@ void Solver::record(IterationStats& is, const std::function<void(const Iteration
   stats_.iterations.push_back(is);
   if (progress) progress(is);
 }
-
-thread_local std::vector<uint8_t> Solver::blocked_scratch_;
-thread_local std::vector<RayScene::Segment> Solver::probe_scratch_;
 
 }  // namespace hierarchical_detail
 

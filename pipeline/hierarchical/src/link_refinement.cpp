@@ -1,9 +1,9 @@
 // Refinement of the hierarchy's links (Hanrahan, Salzman & Aupperle 1991; clusters: Smits, Arvo &
 // Greenberg 1994) by the error each receiver is left with (hierarchical_solver.h): the first pass
 // links nodes as high as they may be linked; later passes split the receivers whose transfers fall
-// unevenly on them and the sources whose radiosity the receiver needs in finer detail. Shafts carry
-// the candidate occluders down; the pairs themselves are refined in pair_refinement.cpp.
-#include "solver.h"
+// unevenly on them and the sources whose radiosity the receiver needs in finer detail (refinement.h).
+// Shafts carry the candidate occluders down; the pairs themselves are refined in pair_refinement.cpp.
+#include "refinement.h"
 
 #include <algorithm>
 
@@ -15,7 +15,33 @@
 
 namespace walkrad::hierarchical_detail {
 
-std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
+Refinement::Refinement(Hierarchy& h, const RayScene& rays, const HierarchicalSettings& s, HierarchicalStats& stats,
+                       const ErrorOracle& oracle, Division division, double typical_area)
+    : h_(h), rays_(rays), s_(s), stats_(stats), oracle_(oracle), division_(division) {
+  mark_two_sided_clusters();
+  // Punctual lights: each input polygon's direct irradiance, and how much it varies over it.
+  if (lights()) {  // every element is an input polygon's root here
+    for (uint32_t i = 0; i < h_.nodes().size(); ++i)
+      if (!h_[i].cluster) light_frontier_.push_back(i);
+    light_spread_ = direct_for(light_frontier_);
+  }
+  min_area_ = s_.min_area > 0 ? s_.min_area : typical_area;
+  stats_.min_area = min_area_;
+}
+
+std::vector<LinkRequest> Refinement::take_requests() {
+  std::vector<LinkRequest> out;
+  out.swap(requests_);
+  elsewhere_ = 0;
+  return out;
+}
+
+void Refinement::forget_light_frontier() {
+  std::vector<uint32_t>().swap(light_frontier_);
+  std::vector<double>().swap(light_spread_);
+}
+
+std::vector<double> Refinement::direct_for(const std::vector<uint32_t>& elements) {
   std::vector<double> spread(elements.size(), 0.0);
   std::vector<uint64_t> rays(elements.size(), 0);
   const RayScene* occluders = s_.visibility ? &rays_ : nullptr;
@@ -40,14 +66,14 @@ std::vector<double> Solver::direct_for(const std::vector<uint32_t>& elements) {
   return spread;
 }
 
-void Solver::compute_missing_direct() {
+void Refinement::compute_missing_direct() {
   std::vector<uint32_t> missing;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
     if (!h_[i].cluster && !h_[i].D_known) missing.push_back(i);
   direct_for(missing);
 }
 
-void Solver::refine_for_lights() {
+void Refinement::refine_for_lights() {
   if (!lights()) return;
   std::vector<uint32_t> frontier = std::move(light_frontier_);  // the roots, lit in the constructor
   std::vector<double> spread = std::move(light_spread_);
@@ -65,7 +91,7 @@ void Solver::refine_for_lights() {
   }
 }
 
-void Solver::mark_two_sided_clusters() {
+void Refinement::mark_two_sided_clusters() {
   if (!s_.twins) return;
   two_sided_.assign(h_.nodes().size(), 0);
   for (uint32_t k = 0; k < h_.nodes().size(); ++k) {
@@ -74,7 +100,7 @@ void Solver::mark_two_sided_clusters() {
   }
 }
 
-std::vector<uint8_t> Solver::under_close_pairs() const {
+std::vector<uint8_t> Refinement::under_close_pairs() const {
   std::vector<uint8_t> out(h_.nodes().size(), 0);
   if (!oracle_.importance()) return out;  // every close pair matters (close_matters): none is left whole
   for (uint32_t k = 0; k < out.size(); ++k)  // its own links (where they are held)
@@ -91,13 +117,13 @@ std::vector<uint8_t> Solver::under_close_pairs() const {
   return out;
 }
 
-bool Solver::splittable(uint32_t i) const {
+bool Refinement::splittable(uint32_t i) const {
   const HNode& n = h_[i];
   if (n.cluster) return n.child_count > 0;
   return n.depth < s_.max_depth && n.area * 0.25 >= min_area_;
 }
 
-std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
+std::vector<uint32_t> Refinement::occluders(uint32_t i, uint32_t j, const Shaft& shaft, uint32_t ex_i, uint32_t ex_j,
                                 const std::vector<uint32_t>* parent) const {
   if (compact())
     return parent ? filter_compact_candidates(h_.tree(), shaft, *parent, ex_i, ex_j) : compact_candidates(h_.tree(), shaft, ex_i, ex_j);
@@ -125,25 +151,25 @@ std::vector<uint32_t> Solver::occluders(uint32_t i, uint32_t j, const Shaft& sha
   return filter_candidates(tree, shaft, out, ex_i, ex_j, tags);
 }
 
-bool Solver::ray_free(const Link& l) const {
+bool Refinement::ray_free(const Link& l) const {
   // Compact lists and visibility on: rays were cast exactly where the shaft held a candidate.
   return compact() && s_.visibility && (l.rays & 1) == 0;
 }
 
-std::vector<uint32_t> Solver::link_candidates(uint32_t i, const Link& l) const {
+std::vector<uint32_t> Refinement::link_candidates(uint32_t i, const Link& l) const {
   if (ray_free(l)) return {};
   const uint32_t j = l.source;
   return occluders(i, j, Shaft(h_[i].bounds, h_[j].bounds), h_[i].cluster ? UINT32_MAX : h_[i].polygon,
                    h_[j].cluster ? UINT32_MAX : h_[j].polygon, nullptr);
 }
 
-void Solver::recast(uint32_t i, const Link& l) {
+void Refinement::recast(uint32_t i, const Link& l) {
   --stats_.links;
   ++stats_.recast;
   add_pending({i, l.source, kHiddenRecast * int(l.samples), (l.rays & 1) != 0, (l.rays & 2) != 0});
 }
 
-void Solver::replace_link(uint32_t i, const Link& l, bool split_receiver, std::vector<uint32_t>& candidates) {
+void Refinement::replace_link(uint32_t i, const Link& l, bool split_receiver, std::vector<uint32_t>& candidates) {
   if (split_receiver) {
     split_link(i, l, candidates);
     return;
@@ -160,7 +186,7 @@ void Solver::replace_link(uint32_t i, const Link& l, bool split_receiver, std::v
   queued_pairs_.push_back(std::move(t));
 }
 
-void Solver::split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates) {
+void Refinement::split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candidates) {
   // The pair's candidates, searched in the tree once (ReceiverPlan) and filtered for each child
   // (shaft.h: the children's shafts lie inside the pair's), not searched again from the root per child.
   h_.subdivide(i);
@@ -169,7 +195,7 @@ void Solver::split_link(uint32_t i, const Link& l, std::vector<uint32_t>& candid
   for (uint32_t k = 0; k < h_[i].child_count; ++k) queued_pairs_.push_back({h_.child(h_[i], k), l.source, &list});
 }
 
-Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) const {
+Refinement::ReceiverPlan Refinement::plan_receiver(uint32_t i, bool with_candidates) const {
   ReceiverPlan plan;
   const std::vector<Link>& links = h_[i].links;
   if (links.empty()) return plan;
@@ -208,9 +234,7 @@ Solver::ReceiverPlan Solver::plan_receiver(uint32_t i, bool with_candidates) con
   return plan;
 }
 
-void Solver::refine_existing() {
-  oracle_.update_scales();
-  oracle_.measure_variation();
+void Refinement::refine_existing() {
   // What to do with each receiver's links depends only on the state before this pass: a split adds
   // nodes and pending links but changes no existing node's links, radiosity, bounds or measures. So
   // the decisions and the split links' candidate lists (searched from the tree's root: a quarter of the
@@ -224,8 +248,8 @@ void Solver::refine_existing() {
   const size_t n = h_.nodes().size();
   std::vector<uint32_t> plan_of;
   std::vector<RemotePlan> remote;
-  if (divisible_) exchange_plans(plan_of, remote);
-  auto remote_plan = [&](size_t at) { return divisible_ && !h_[uint32_t(at)].cluster; };
+  if (division_.divisible) exchange_plans(plan_of, remote);
+  auto remote_plan = [&](size_t at) { return division_.divisible && !h_[uint32_t(at)].cluster; };
   std::vector<ReceiverPlan> plans;
   for (size_t first = 0; first < n; first += kBatch) {
     const size_t last = std::min(n, first + kBatch);
@@ -266,5 +290,8 @@ void Solver::refine_existing() {
     queued_lists_.clear();
   }
 }
+
+thread_local std::vector<uint8_t> Refinement::blocked_scratch_;
+thread_local std::vector<RayScene::Segment> Refinement::probe_scratch_;
 
 }  // namespace walkrad::hierarchical_detail

@@ -1,9 +1,9 @@
 // The refinement of pairs of nodes (Hanrahan, Salzman & Aupperle 1991; clusters: Smits, Arvo &
 // Greenberg 1994), breadth first: a pair is dropped, linked, or one end is split and its children's
 // pairs refined with the pair's candidate occluders (shaft.h: the children's shafts lie inside it).
-// Each level's decisions are made in parallel and applied in order (solver.h, refine_pairs): the
+// Each level's decisions are made in parallel and applied in order (refinement.h, refine_pairs): the
 // 150-room level spent 58 s of its 307 s on one thread in the depth-first version's shaft tests.
-#include "solver.h"
+#include "refinement.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,13 +38,13 @@ bool behind(const HNode& element, const HNode& other) {
 
 }  // namespace
 
-void Solver::refine_first() {
+void Refinement::refine_first() {
   std::vector<PairTask> root;
   root.push_back({h_.root(), h_.root()});
   refine_pairs(std::move(root));
 }
 
-Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
+Refinement::PairOutcome Refinement::decide_pair(PairTask& t) const {
   PairOutcome out;
   const uint32_t i = t.i, j = t.j;
   if (i == j) {
@@ -132,7 +132,7 @@ Solver::PairOutcome Solver::decide_pair(PairTask& t) const {
   return out;
 }
 
-void Solver::probe(uint32_t i, uint32_t j, PairOutcome& out) const {
+void Refinement::probe(uint32_t i, uint32_t j, PairOutcome& out) const {
   const HNode& ri = h_[i];
   const HNode& sj = h_[j];
   Rng rng(j, i);  // not the link's own stream (evaluate: receiver, source)
@@ -158,7 +158,7 @@ void Solver::probe(uint32_t i, uint32_t j, PairOutcome& out) const {
   out.probe_hidden = std::all_of(blocked.begin(), blocked.end(), [](uint8_t b) { return b != 0; });
 }
 
-void Solver::refine_pairs(std::vector<PairTask> tasks) {
+void Refinement::refine_pairs(std::vector<PairTask> tasks) {
   // The previous level's outcomes: their lists are what this level's pairs filter.
   std::vector<PairOutcome> parents;
   while (!tasks.empty()) {

@@ -4,6 +4,7 @@
 #include "solver.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,15 +14,15 @@
 namespace walkrad::hierarchical_detail {
 
 void Solver::take_requests() {
-  if (s_.check_limits) s_.check_limits("link evaluation", requests_.size() * sizeof(Pending));
-  pending_.reserve(requests_.size());
-  for (const LinkRequest& r : requests_) pending_.emplace_back(r);
-  note_link_memory();  // both lists held: the round's peak
-  std::vector<LinkRequest>().swap(requests_);
+  std::vector<LinkRequest> requests = refinement_.take_requests();
+  if (s_.check_limits) s_.check_limits("link evaluation", requests.size() * sizeof(Pending));
+  pending_.reserve(requests.size());
+  for (const LinkRequest& r : requests) pending_.emplace_back(r);
+  note_link_memory(requests.capacity() * sizeof(LinkRequest));  // both lists held: the round's peak
 }
 
 void Solver::evaluate_pending(IterationStats& is) {
-  if (divided_) {
+  if (division_.divided) {
     evaluate_divided(is);
     return;
   }
@@ -99,6 +100,47 @@ void Solver::store_links(PendingList& list) {
       }
     }
   });
+}
+
+void Solver::evaluate_divided(IterationStats& is) {
+  take_requests();
+  // The cluster receivers' links (on every rank) apart from this rank's receivers'.
+  PendingList shared;
+  size_t kept = 0;
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    if (h_[pending_[k].receiver].cluster) shared.push_back(pending_[k]);
+    else pending_[kept++] = pending_[k];
+  }
+  pending_.erase(pending_.begin() + std::ptrdiff_t(kept), pending_.end());
+  const auto start = std::chrono::steady_clock::now();
+  evaluator_.evaluate_range(pending_, 0, pending_.size());
+  rank_work().compute_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rank_work().items += pending_.size();
+  rank_work().links += pending_.size();
+  for (const Pending& p : pending_) rank_work().rays += p.rays;
+  const std::vector<size_t> blocks =
+      run_my_block(shared.size(), [&](size_t k) { return 1.0 + shared[k].samples; }, [&](size_t begin, size_t end) {
+        evaluator_.evaluate_range(shared, begin, end);
+        rank_work().links += end - begin;
+        for (size_t k = begin; k < end; ++k) rank_work().rays += shared[k].rays;
+      });
+  share_blocks(shared, blocks);
+  // What the links count: this rank's summed over the ranks (integers: any order), the clusters' as
+  // every rank has them.
+  LinkCounts counts = count_links(pending_);
+  all_sum(counts.data(), counts.size());
+  const LinkCounts clusters = count_links(shared);
+  for (size_t k = 0; k < counts.size(); ++k) counts[k] += clusters[k];
+  add_counts(counts, is);
+  store_links(shared);
+  store_links(pending_);
+  PendingList().swap(pending_);
+}
+
+void Solver::note_link_memory(uint64_t taken_requests) {
+  const uint64_t bytes = refinement_.request_bytes() + taken_requests + pending_.capacity() * sizeof(Pending) + link_bytes(h_);
+  stats_.link_bytes_peak = std::max(stats_.link_bytes_peak, bytes);
+  rank_work().link_bytes_peak = std::max(rank_work().link_bytes_peak, bytes);
 }
 
 }  // namespace walkrad::hierarchical_detail

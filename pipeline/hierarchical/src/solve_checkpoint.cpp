@@ -89,7 +89,7 @@ Solver::RoundState Solver::load_state(ByteReader& in) {
   each_stat([&](auto& v) { v = in.get<std::remove_reference_t<decltype(v)>>(); }, stats_);
   if (!in.done()) throw ByteFormatError("bytes past the end of the saved state");
   // Consumed by the first rounds (refine_for_lights): a state saved after them no longer needs it.
-  if (round.next_round > 1) light_frontier_.clear(), light_spread_.clear();
+  if (round.next_round > 1) refinement_.forget_light_frontier();
   return round;
 }
 

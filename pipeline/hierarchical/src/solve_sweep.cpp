@@ -17,8 +17,8 @@
 
 namespace walkrad::hierarchical_detail {
 
-Sweeps::Sweeps(Hierarchy& h, const HierarchicalSettings& s, const ErrorOracle& oracle, SweepRanks ranks)
-    : h_(h), s_(s), oracle_(oracle), ranks_(std::move(ranks)) {
+Sweeps::Sweeps(Hierarchy& h, const HierarchicalSettings& s, const ErrorOracle& oracle, Division division)
+    : h_(h), s_(s), oracle_(oracle), division_(division) {
   // Every cluster exists from the start; only they gather by direction (192 bytes each: kept by node,
   // a 150-room level's 748,742 element roots held 144 MB of them unused). By HNode::tree_node.
   state_.cube.assign(h_.cluster_count(), DirectionalIrradiance{});
@@ -51,14 +51,14 @@ double Sweeps::sweep(IterationStats& is, bool with_importance, double relaxation
         if (here(uint32_t(i))) gather(nodes[i]);
     });
   next_block_ = 0;
-  if (ranks_.divided) ranks_.share_gathered();
+  if (division_.divided) share_gathered();
   state_.change = 0;
   is.emitted = is.absorbed = is.residual = Vec3{};
   is.clamped_leaves = 0;
   push_pull(h_.root(), Vec3{}, 0.0, DirectionalIrradiance{}, is);
   if (oracle_.importance() && with_importance) {
-    if (ranks_.divisible) {
-      ranks_.shoot_importance();
+    if (division_.divisible) {
+      shoot_importance_exactly();
     } else {
       // Sequential: sums in a fixed order. Into an array of their own, not the nodes' Ig: each link
       // adds to a source far from the last, and a node is hundreds of bytes (a cache miss each).

@@ -1,8 +1,8 @@
 // The transport, a part of the hierarchical solver (solver.h): sweeps that gather along the links,
 // push-pull radiosity down and up the hierarchy, and shoot and push-pull importance (Hanrahan, Salzman
 // & Aupperle 1991; importance: Smits, Arvo & Salesin 1992). Defined in solve_sweep.cpp. It changes the
-// nodes' radiosity and importance, never the links; what a solve divided among ranks does within a
-// sweep is handed in (SweepRanks). Private to this stage.
+// nodes' radiosity and importance, never the links; how the solve is divided among ranks is handed in
+// (division.h: divided_sweep.cpp does what a divided sweep adds). Private to this stage.
 #pragma once
 
 #include <array>
@@ -10,22 +10,13 @@
 #include <functional>
 #include <vector>
 
+#include "division.h"
 #include "error_oracle.h"
 #include "walkrad/hierarchical/directional_irradiance.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy.h"
-#include "walkrad/hierarchical/link_owners.h"
 
 namespace walkrad::hierarchical_detail {
-
-// What a solve divided among ranks does within a sweep (divided_solve.cpp, link_owners.h); one process
-// holding every link does none of it.
-struct SweepRanks {
-  bool divided = false;    // links divided among ranks: a rank gathers only the nodes whose links it holds
-  bool divisible = false;  // importance shot in exact units, the same sums whatever rank adds which link
-  std::function<void()> share_gathered;    // divided: every node's gather from the rank that made it
-  std::function<void()> shoot_importance;  // divisible: the exact shooting
-};
 
 // What the sweeps keep between rounds, saved with the solve's state.
 struct SweepState {
@@ -36,7 +27,7 @@ struct SweepState {
 class Sweeps {
  public:
   // The hierarchy, the settings and the oracle must outlive the sweeps.
-  Sweeps(Hierarchy& h, const HierarchicalSettings& s, const ErrorOracle& oracle, SweepRanks ranks);
+  Sweeps(Hierarchy& h, const HierarchicalSettings& s, const ErrorOracle& oracle, Division division);
 
   // Changes are measured relative to the leaf's radiosity, but not below 1e-9 of the brightest
   // emitter's (its emission and its punctual lights' part, D: measured once D is known): a closed dark
@@ -63,7 +54,13 @@ class Sweeps {
   double change_floor() const { return change_floor_; }
 
  private:
-  bool here(uint32_t i) const { return !ranks_.divided || holds_links(h_, i); }
+  bool here(uint32_t i) const { return division_.here(h_, i); }
+  // Divided (divided_sweep.cpp): every element node's gather (H, Fsum, and the shares Hp, Fp its parent
+  // pushed) from the rank that gathered it.
+  void share_gathered();
+  // Divisible (divided_sweep.cpp): importance shot along the links in 2^-k units of its total, integer
+  // sums, the same in any order whatever rank adds which link.
+  void shoot_importance_exactly();
 
   // Pushes irradiance H and the row sum S (Σ F along the path) down. A leaf whose row sum is well
   // above 1 receives more than any enclosure could send it: coincident surfaces in the input (two
@@ -90,7 +87,7 @@ class Sweeps {
   Hierarchy& h_;
   const HierarchicalSettings& s_;
   const ErrorOracle& oracle_;
-  const SweepRanks ranks_;
+  const Division division_;
   SweepState state_;
   double change_floor_ = 0;
   double relax_ = 1.0;  // ω of the sweep under way (sweep's argument, read by push_pull)

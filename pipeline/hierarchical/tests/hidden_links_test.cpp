@@ -1,6 +1,6 @@
 // Links that see nothing: a link whose every ray is blocked is dropped where its occlusion is proven
 // (occlusion_proof.h: a wall between two rooms), else kept at 0, cast again once with more rays, and
-// refined while what it might carry matters (solver.h, Solver::unresolved); a pair with a long
+// refined while what it might carry matters (refinement.h, Refinement::unresolved); a pair with a long
 // candidate list is probed before it is split (HierarchicalSettings::probe_entries).
 #include <cmath>
 #include <cstdio>

@@ -9,30 +9,19 @@
 #include <tbb/global_control.h>
 
 #include "link_evaluator.h"
-#include "walkrad/scene/cluster_tree.h"
+#include "polygon_scene.h"
 #include "walkrad/testing/howell_catalogue.h"
 #include "walkrad/testing/test_scenes.h"
 
 namespace walkrad::hierarchical_detail {
 namespace {
 
-// A scene of the given polygons (one grey material), with what an evaluator reads.
-struct LinkScene {
-  Scene scene;
-  ClusterTree tree;
-  std::unique_ptr<RayScene> rays;
-  std::unique_ptr<Hierarchy> h;
-  HierarchicalSettings settings;
+// A scene of the given polygons (polygon_scene.h) with its evaluator.
+struct LinkScene : test::PolygonScene {
   std::unique_ptr<LinkEvaluator> evaluator;
 
-  explicit LinkScene(std::vector<Polygon> polygons) {
-    scene.materials.push_back({"grey", {0.5, 0.5, 0.5}, {0, 0, 0}});
-    scene.polygons = std::move(polygons);
-    tree = build_cluster_tree(scene);
-    rays = std::make_unique<RayScene>(scene);
-    h = std::make_unique<Hierarchy>(scene, tree);
-    evaluator = std::make_unique<LinkEvaluator>(*h, *rays, settings);
-  }
+  explicit LinkScene(std::vector<Polygon> polygons)
+      : PolygonScene(std::move(polygons)), evaluator(std::make_unique<LinkEvaluator>(*h, *rays, settings)) {}
   // Polygon a's element receiving from polygon b's, evaluated.
   Pending link(uint32_t a, uint32_t b, bool cast, int samples = 64) const {
     Pending p(LinkRequest{h->polygon_root(a), h->polygon_root(b), samples, cast, false});

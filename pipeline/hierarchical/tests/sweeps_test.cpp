@@ -35,7 +35,7 @@ TEST(Sweeps, ReachTheClosedFormFixedPoint) {
     const double rf = 0.5 * double(float(t.F));
     const double b1 = 1.0 / (1.0 - rf * rf), b2 = rf * b1;
     ErrorOracle oracle(*t.h, t.settings, 1e-4);
-    Sweeps sweeps(*t.h, t.settings, oracle, SweepRanks{});
+    Sweeps sweeps(*t.h, t.settings, oracle, Division{});
     sweeps.measure_change_floor();
     if (gauss_seidel) sweeps.plan_gather_blocks();
     double change = 1;
@@ -58,7 +58,7 @@ TEST(Sweeps, GaussSeidelConvergesInFewerSweepsThanJacobi) {
     LinkedSquares t;
     t.settings.gauss_seidel = gauss_seidel;
     ErrorOracle oracle(*t.h, t.settings, 1e-4);
-    Sweeps sweeps(*t.h, t.settings, oracle, SweepRanks{});
+    Sweeps sweeps(*t.h, t.settings, oracle, Division{});
     sweeps.measure_change_floor();
     if (gauss_seidel) sweeps.plan_gather_blocks();
     IterationStats is;
