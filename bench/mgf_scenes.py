@@ -24,7 +24,7 @@ for scene in ["cube.mgf", "corridor.mgf", "office3/office.mgf", "hospital/hosp.m
     path = os.path.join(out, scene.replace("/", "-") + ".bake")
     t0 = time.monotonic()
     r = subprocess.run([os.path.join(build, "pipeline/walkrad"), "bake", os.path.join(scenes, scene), "-o", path, "-q",
-                        "--view-independent", "--error", eps], capture_output=True, text=True)
+                        "--view-independent", "--error", eps, "--input-folder", scenes], capture_output=True, text=True)
     seconds = time.monotonic() - t0
     if r.returncode != 0:
         print(f"| {scene} | failed: {r.stderr.strip()[:120]} |")

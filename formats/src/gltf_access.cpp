@@ -130,13 +130,40 @@ std::pair<size_t, size_t> check_glb(const std::vector<unsigned char>& b, const s
   return {20, size_t(json_length)};
 }
 
+// What tinygltf's file callbacks are handed: the glTF file (for refusals), its input folder, and whether
+// the last path asked about lay inside it but did not exist.
+struct Resources {
+  const std::string& file;
+  std::string folder;
+  bool missing = false;
+};
+
+// tinygltf asks whether a buffer's or image's file exists before reading it, at the uri joined to the
+// glTF's folder and then, where that does not exist, joined to the working directory. A path outside
+// the input folder is refused here, before anything opens it; the working directory's, which only
+// follows a missing file, is not looked at (tinygltf then says the file is not found).
+bool resource_exists(const std::string& path, void* resources) {
+  Resources& r = *static_cast<Resources*>(resources);
+  const std::string why = input_limits::outside(path, r.folder);
+  if (!why.empty()) {
+    if (r.missing) return false;
+    throw InputError(r.file, "resource '" + path + "'", why);
+  }
+  std::error_code ec;
+  r.missing = !std::filesystem::exists(path, ec);
+  return !r.missing;
+}
+
 // tinygltf's file reads (external buffers and images) with the same rules as the scene file.
 // A refusal names the glTF file and the resource's path.
-bool read_resource(std::vector<unsigned char>* out, std::string*, const std::string& path, void* gltf) {
+bool read_resource(std::vector<unsigned char>* out, std::string*, const std::string& path, void* resources) {
+  const Resources& r = *static_cast<const Resources*>(resources);
+  const std::string why = input_limits::outside(path, r.folder);
+  if (!why.empty()) throw InputError(r.file, "resource '" + path + "'", why);
   try {
     *out = input_limits::read_file(path, input_limits::kMaxBinaryBytes, "file");
   } catch (const InputError& e) {
-    throw InputError(*static_cast<const std::string*>(gltf), "resource '" + path + "'", e.message(), e.code());
+    throw InputError(r.file, "resource '" + path + "'", e.message(), e.code());
   }
   return true;
 }
@@ -154,7 +181,7 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
 
 }  // namespace
 
-tinygltf::Model load(const std::string& path, bool load_images) {
+tinygltf::Model load(const std::string& path, bool load_images, const std::string& folder) {
   const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
   const std::vector<unsigned char> bytes =
       input_limits::read_file(path, binary ? input_limits::kMaxBinaryBytes : input_limits::kMaxJsonBytes, "glTF file");
@@ -166,8 +193,8 @@ tinygltf::Model load(const std::string& path, bool load_images) {
               has_bin ? std::min<size_t>(bytes.size() - bin_at, u32(bytes, bin_at - 8)) : 0, path);
 
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_resource, &tinygltf::WriteWholeFile,
-                          const_cast<std::string*>(&path)});
+  Resources resources{path, input_limits::input_folder(path, folder)};
+  loader.SetFsCallbacks({&resource_exists, &tinygltf::ExpandFilePath, &read_resource, &tinygltf::WriteWholeFile, &resources});
   if (!load_images)
     loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
   else

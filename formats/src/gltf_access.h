@@ -24,6 +24,7 @@ void append_indices(const tinygltf::Model& m, int accessor, uint32_t offset, std
                     const std::string& file);
 
 // Loads .gltf or .glb (by extension). Refuses a missing file or tinygltf's errors as InputError.
-tinygltf::Model load(const std::string& path, bool load_images);
+// folder: where its buffers and images may lie (input_limits::input_folder; empty: the file's own).
+tinygltf::Model load(const std::string& path, bool load_images, const std::string& folder = {});
 
 }  // namespace walkrad::gltf_access

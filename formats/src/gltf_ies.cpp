@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "input_limits.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
@@ -52,6 +53,7 @@ std::shared_ptr<const IesProfile> GltfIesLights::profile(int index) {
         throw InputError(file_, place, "the data URI cannot be decoded (base64 expected)");
     } else {
       const std::string path = (std::filesystem::path(file_).parent_path() / uri_path(uri)).string();
+      if (const std::string why = input_limits::outside(path, folder_); !why.empty()) throw InputError(file_, place, "'" + path + "' " + why);
       return profiles_[size_t(index)] = std::make_shared<const IesProfile>(read_ies(path));
     }
   } else if (p.Has("bufferView") && p.Get("bufferView").IsInt()) {

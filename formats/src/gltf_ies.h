@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -15,7 +16,9 @@ namespace walkrad {
 
 class GltfIesLights {
  public:
-  GltfIesLights(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file) {}
+  // folder: where a profile named by uri may lie (input_limits.h).
+  GltfIesLights(const tinygltf::Model& model, const std::string& file, std::string folder)
+      : model_(model), file_(file), folder_(std::move(folder)) {}
 
   // The node's luminaire appended to scene.lights, if the node has one. position, direction (−Z)
   // and up (+Y) are the node's world frame; the node's scale does not change the intensity.
@@ -26,6 +29,7 @@ class GltfIesLights {
 
   const tinygltf::Model& model_;
   const std::string& file_;
+  const std::string folder_;
   std::vector<std::shared_ptr<const IesProfile>> profiles_;
 };
 

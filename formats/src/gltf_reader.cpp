@@ -7,6 +7,7 @@
 
 #include "gltf_access.h"
 #include "gltf_ies.h"
+#include "input_limits.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad {
@@ -378,11 +379,12 @@ struct Reader {
 
 }  // namespace
 
-Scene read_gltf(const std::string& path) {
-  const tinygltf::Model model = gltf_access::load(path, /*load_images=*/true);
+Scene read_gltf(const std::string& path, const std::string& input_folder) {
+  const std::string folder = input_limits::input_folder(path, input_folder);
+  const tinygltf::Model model = gltf_access::load(path, /*load_images=*/true, folder);
   Scene scene;
   scene.source = path;
-  Reader r{model, path, scene, {}, -1, std::vector<bool>(model.nodes.size(), false), GltfIesLights(model, path)};
+  Reader r{model, path, scene, {}, -1, std::vector<bool>(model.nodes.size(), false), GltfIesLights(model, path, folder)};
   for (size_t i = 0; i < model.materials.size(); ++i) {
     scene.materials.push_back(convert_material(model, int(i), scene, path));
     r.material_map.push_back(int(i));

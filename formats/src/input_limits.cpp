@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "walkrad/formats/error.h"
 
@@ -48,6 +49,28 @@ void check_json_depth(const char* text, size_t size, const std::string& file) {
       --depth;
     }
   }
+}
+
+std::string input_folder(const std::string& scene, const std::string& given) {
+  if (!given.empty()) return given;
+  const std::string parent = std::filesystem::path(scene).parent_path().string();
+  return parent.empty() ? "." : parent;
+}
+
+std::string outside(const std::string& path, const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(fs::absolute(folder, ec), ec);
+  if (ec) return "the input folder '" + folder + "' cannot be resolved (" + ec.message() + ")";
+  const fs::path target = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (ec) return "cannot be resolved (" + ec.message() + ")";
+  auto r = root.begin(), t = target.begin();
+  for (; r != root.end() && t != target.end() && *r == *t; ++r, ++t) {
+  }
+  // weakly_canonical keeps a trailing separator as an empty last part.
+  if (r == root.end() || (std::next(r) == root.end() && r->empty())) return "";
+  return "lies outside the input folder " + root.string() +
+         " (referenced files must lie inside the scene's folder, or the one --input-folder names)";
 }
 
 }  // namespace walkrad::input_limits

@@ -117,8 +117,9 @@ struct Frame {
 
 class Reader {
  public:
-  Reader(const MgfOptions& options, MgfStats& stats, Scene& scene)
-      : options_(options), stats_(stats), scene_(scene), divisions_(mgf::quarter_divisions(options.tolerance)) {}
+  Reader(const MgfOptions& options, MgfStats& stats, Scene& scene, std::string folder)
+      : options_(options), stats_(stats), scene_(scene), divisions_(mgf::quarter_divisions(options.tolerance)),
+        folder_(std::move(folder)) {}
 
   void read(const std::string& path) {
     const ParsedFile* file = open(path);
@@ -394,11 +395,18 @@ class Reader {
   // ies pathname [-m multiplier] [transform]: an IES luminaire at the origin of its transform, its
   // web's zero point along −Z and type C's horizontal angle 0 along +X (the MGF spec; ies.h). The
   // candela become W/sr as ed's lm/m² become W/m² (÷ kWhiteEfficacy), in the current colour.
-  void luminaire() {
-    count(1, SIZE_MAX);
+  // The file an entity names (relative to the file that holds it), refused outside the input folder.
+  std::string referenced_file(const char* keyword) {
     fs::path target(entity_->args[1]);
     if (target.is_relative()) target = fs::path(file_->path).parent_path() / target;
     const std::string path = target.lexically_normal().string();
+    if (const std::string why = input_limits::outside(path, folder_); !why.empty()) fail(std::string(keyword) + ": '" + path + "' " + why);
+    return path;
+  }
+
+  void luminaire() {
+    count(1, SIZE_MAX);
+    const std::string path = referenced_file("ies");
     size_t first = 2;
     double multiplier = 1;
     if (entity_->args.size() > 2 && entity_->args[2] == "-m") {
@@ -431,9 +439,7 @@ class Reader {
 
   void include() {
     count(1, SIZE_MAX);
-    fs::path target(entity_->args[1]);
-    if (target.is_relative()) target = fs::path(file_->path).parent_path() / target;
-    const std::string path = target.lexically_normal().string();
+    const std::string path = referenced_file("i");
     const std::string key = canonical(path);
     if (std::find(stack_.begin(), stack_.end(), key) != stack_.end()) {
       std::string chain;
@@ -670,6 +676,7 @@ class Reader {
   }
 
   const MgfOptions& options_;
+  const std::string folder_;  // where includes and IES profiles may lie (MgfOptions::input_folder)
   MgfStats& stats_;
   uint64_t handled_ = 0;  // entities handled, repeats included (kMaxHandled)
   Scene& scene_;
@@ -714,7 +721,7 @@ Scene read_mgf(const std::string& path, const MgfOptions& options, MgfStats* sta
   Scene scene;
   scene.source = path;
   MgfStats local;
-  Reader(options, stats ? *stats : local, scene).read(path);
+  Reader(options, stats ? *stats : local, scene, input_limits::input_folder(path, options.input_folder)).read(path);
   return scene;
 }
 

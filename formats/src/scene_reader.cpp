@@ -11,11 +11,15 @@
 
 namespace walkrad {
 
-Scene read_scene(const std::string& path) {
+Scene read_scene(const std::string& path, const std::string& input_folder) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".gltf" || ext == ".glb") return read_gltf(path);
-  if (ext == ".mgf") return read_mgf(path);
+  if (ext == ".gltf" || ext == ".glb") return read_gltf(path, input_folder);
+  if (ext == ".mgf") {
+    MgfOptions options;
+    options.input_folder = input_folder;
+    return read_mgf(path, options);
+  }
   throw InputError(path, "", "unknown scene format '" + ext + "' (walkrad reads .gltf, .glb and .mgf)", kExitBadInput);
 }
 

@@ -225,14 +225,20 @@ TEST_F(BadInput, IesLightsInGltf) {
   }
 }
 
+// Devices are refused outside the input folder (input_folder_test.cpp) and, where the folder holds them
+// ("/" here), as not regular files: a read from one could block or never end.
 TEST_F(BadInput, DevicesAreNotFiles) {
   nlohmann::json g = quad_gltf();
-  g["buffers"][0]["uri"] = "/dev/zero";
+  g["buffers"][0]["uri"] = "../../../../../../../../dev/zero";
   const std::string p = write("dev.gltf", g);
-  expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"/dev/zero"});
+  expect_refused([&] { read_gltf(p); }, p, kExitBadInput, {"/dev/zero", "lies outside the input folder"});
+  expect_refused([&] { read_gltf(p, "/"); }, p, kExitBadInput, {"/dev/zero", "not a regular file"});
   expect_refused([&] { read_walkthrough("/dev/zero"); }, "/dev/zero", kExitBadInput, {"not a regular file"});
   const std::string m = write("include.mgf", std::string("i /dev/zero\n"));
-  expect_refused([&] { read_mgf(m); }, m, kExitBadInput, {"line 1", "cannot open included file"});
+  expect_refused([&] { read_mgf(m); }, m, kExitBadInput, {"line 1", "lies outside the input folder"});
+  MgfOptions root;
+  root.input_folder = "/";
+  expect_refused([&] { read_mgf(m, root); }, m, kExitBadInput, {"line 1", "cannot open included file"});
 }
 
 // Non-finite coordinates, reflectance ≥ 1 or < 0, negative emission: exit 3 with the place.

@@ -791,7 +791,9 @@ TEST(MgfReader, LoadsTheClassicScenes) {
     const std::string path = kSharedScenes + "/" + e.file;
     MgfStats stats;
     const auto t0 = std::chrono::steady_clock::now();
-    const Scene s = read_mgf(path, {}, &stats);
+    MgfOptions collection;  // the hospital includes the collection's shared ../Materials
+    collection.input_folder = kSharedScenes;
+    const Scene s = read_mgf(path, collection, &stats);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t emitting_polygons = 0;
     for (const Polygon& p : s.polygons) {

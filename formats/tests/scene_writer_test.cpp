@@ -116,7 +116,9 @@ TEST(SceneWriter, RoundTripsTheClassicScenes) {
   if (!fs::exists(kSharedScenes)) GTEST_SKIP() << kSharedScenes << " is absent";
   for (const std::string name : {"cube.mgf", "corridor.mgf", "office3/office.mgf", "hospital/hosp.mgf"}) {
     SCOPED_TRACE(name);
-    const Scene original = read_mgf(kSharedScenes + "/" + name);
+    MgfOptions collection;  // the hospital includes the collection's shared ../Materials
+    collection.input_folder = kSharedScenes;
+    const Scene original = read_mgf(kSharedScenes + "/" + name, collection);
     const std::string path = testing::TempDir() + "walkrad-classic.glb";
     write_scene_gltf(original, path);
     expect_same_scene(original, read_gltf(path));

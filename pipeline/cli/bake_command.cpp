@@ -14,8 +14,11 @@ namespace walkrad::command {
 
 void add_bake(CLI::App& app, BakeCommand& c) {
   c.app = app.add_subcommand("bake", "bake a scene's radiosity into a folder of vertex-coloured glTF");
-  c.app->add_option("scene", c.bs.scene, "scene file (.gltf, .glb)")->required();
+  c.app->add_option("scene", c.bs.scene, "scene file (.gltf, .glb, .mgf)")->required();
   c.app->add_option("--views", c.bs.views, "walkthrough JSON (default: the scene's cameras)");
+  c.app->add_option("--input-folder", c.bs.input_folder,
+                    "the only folder whose files the scene may refer to: buffers, images, MGF includes, IES profiles (default: the scene file's folder)")
+      ->check(CLI::ExistingDirectory);
   c.app->add_option("-o,--output", c.bs.output, "output folder (default: <scene name>.bake)");
   c.app->add_option("--method", c.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
       ->capture_default_str();

@@ -39,7 +39,7 @@ int run_bake(BakeCommand& c, const Ranks& rk, bool& stopped);
 
 struct ConvertCommand {
   CLI::App* app = nullptr;
-  std::string scene, output;
+  std::string scene, output, input_folder;
 };
 void add_convert(CLI::App& app, ConvertCommand& c);
 int run_convert(const ConvertCommand& c);

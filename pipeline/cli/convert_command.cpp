@@ -12,6 +12,9 @@ namespace walkrad::command {
 void add_convert(CLI::App& app, ConvertCommand& c) {
   c.app = app.add_subcommand("convert", "write a scene (.mgf, .gltf, .glb) as glTF (.glb or .gltf)");
   c.app->add_option("scene", c.scene, "scene file (.mgf, .gltf, .glb)")->required();
+  c.app->add_option("--input-folder", c.input_folder,
+                    "the only folder whose files the scene may refer to: buffers, images, MGF includes, IES profiles (default: the scene file's folder)")
+      ->check(CLI::ExistingDirectory);
   c.app->add_option("output", c.output, "glTF file to write (.glb or .gltf)")->required()->check(
       [](const std::string& out) {
         const size_t dot = out.find_last_of('.');
@@ -23,7 +26,7 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
 
 int run_convert(const ConvertCommand& c) {
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = read_scene(c.scene);
+  const Scene scene = read_scene(c.scene, c.input_folder);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", c.scene.c_str(), w.c_str());
   write_scene_gltf(scene, c.output);
   size_t emitting = 0;

@@ -11,6 +11,9 @@ void add_sweep(CLI::App& app, SweepCommand& c) {
   c.app = app.add_subcommand("sweep", "bake over a range of requested errors and element sizes; error against a path-traced reference");
   c.app->add_option("scene", c.ss.scene, "scene file (.gltf, .glb, .mgf)")->required();
   c.app->add_option("--views", c.ss.views, "walkthrough JSON (default: the scene's cameras)");
+  c.app->add_option("--input-folder", c.ss.input_folder,
+                    "the only folder whose files the scene may refer to: buffers, images, MGF includes, IES profiles (default: the scene file's folder)")
+      ->check(CLI::ExistingDirectory);
   c.app->add_option("-o,--output", c.ss.output, "output folder (default: <scene name>.sweep)");
   c.app->add_option("--methods", c.ss.methods,
                         "classic (Gauss-Seidel), southwell (classic, progressive refinement), hemicube (classic, hemicube form "

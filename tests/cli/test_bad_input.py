@@ -83,6 +83,21 @@ expect("gather-classic", [cornell, "--method", "classic", "--effect", "gather=on
 expect("discontinuities-without-gather", [cornell, "--effect", "gather=off", "--effect", "discontinuities=on"], 2,
        "--effect", "discontinuities", "final gather")
 
+# A buffer outside the scene's folder: refused (the bytes could be any file's), naming the flag that admits
+# a wider folder; a folder that does not exist is a bad argument.
+with open(cornell) as f:
+    doc = json.load(f)
+payload = base64.b64decode(doc["buffers"][0]["uri"].split(",", 1)[1])
+with open(os.path.join(work, "outside.bin"), "wb") as f:
+    f.write(payload)
+doc["buffers"][0]["uri"] = "../outside.bin"
+os.makedirs(os.path.join(work, "scene"))
+escaping = os.path.join(work, "scene", "escaping.gltf")
+with open(escaping, "w") as f:
+    json.dump(doc, f)
+expect("buffer-outside-folder", [escaping], 3, escaping, "outside.bin", "lies outside the input folder", "--input-folder")
+expect("input-folder-missing", [cornell, "--input-folder", os.path.join(work, "no-such-folder")], 2, "--input-folder")
+
 # A .glb whose header claims 4 GB: refused at once, naming the header.
 lying = os.path.join(work, "lying.glb")
 with open(lying, "wb") as f:

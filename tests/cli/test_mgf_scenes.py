@@ -21,11 +21,20 @@ shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 
 failures = []
+# The hospital includes the collection's shared materials (../Materials): outside its own folder, so
+# refused by default, naming the flag that admits them, and nothing written.
+refused = os.path.join(work, "hospital-refused")
+r = subprocess.run([walkrad, "bake", os.path.join(scenes, "hospital/hosp.mgf"), "-o", refused, "-q"],
+                   capture_output=True, text=True)
+if r.returncode != 3 or "lies outside the input folder" not in r.stderr or "--input-folder" not in r.stderr \
+        or os.path.exists(refused):
+    failures.append(f"hospital without --input-folder: exit {r.returncode}: {r.stderr.strip()[-300:]}")
+
 names = ["cube.mgf", "corridor.mgf", "office3/office.mgf", "hospital/hosp.mgf"]
 for name in names:
     out = os.path.join(work, name.replace("/", "-"))
     r = subprocess.run([walkrad, "bake", os.path.join(scenes, name), "-o", out, "-q", "--view-independent",
-                        "--quality", "draft"], capture_output=True, text=True)
+                        "--quality", "draft", "--input-folder", scenes], capture_output=True, text=True)
     if r.returncode != 0:
         failures.append(f"{name}: exit {r.returncode}: {r.stderr.strip()[-300:]}")
         continue
@@ -41,7 +50,7 @@ for name in names:
     if not 0.5 < balance < 1.05:  # open scenes lose light through their openings; none may create it
         failures.append(f"{name}: absorbed/emitted {balance:.3f}")
 
-print(f"{len(names) - len(failures)} passed, {len(failures)} failed")
+print(f"{len(names) + 1 - len(failures)} passed, {len(failures)} failed")
 for f in failures:
     print("FAIL:", f)
 sys.exit(1 if failures else 0)

@@ -18,6 +18,8 @@
 
 namespace walkrad {
 
-Scene read_gltf(const std::string& path);
+// input_folder: where the files it refers to (buffers, images, IES profiles) may lie; empty: the
+// file's own folder. A reference outside it is refused (InputError, kExitBadInput) before it is opened.
+Scene read_gltf(const std::string& path, const std::string& input_folder = {});
 
 }  // namespace walkrad

@@ -7,7 +7,8 @@
 // - the curved primitives sph, cyl, cone, ring, torus and prism, tessellated so that no chord
 //   leaves the true surface by more than MgfOptions::tolerance × its radius;
 // - transforms (xf with -t -rx -ry -rz -s -mx -my -mz -i -a) on a stack, arrays repeated; includes
-//   (i, with a transform; paths relative to the including file; cycles and depths over 32 refused);
+//   (i, with a transform; paths relative to the including file, inside MgfOptions::input_folder;
+//   cycles and depths over 32 refused);
 //   objects (o); luminaires (ies pathname [-m multiplier] [transform]: an IES LM-63 profile, ies.h, as a
 //   punctual light at the transform's origin, one per array instance; candela ÷ 179 lm/W → W/sr in
 //   the current colour, as ed; TILT factors at the luminaire's tilt from straight down, −Z);
@@ -44,6 +45,9 @@ struct MgfOptions {
   double tolerance = 0.02;
   int default_sides = 1;                // 1 or 2: the sides of a material that does not say
   uint64_t max_polygons = 50'000'000;   // more is refused (kExitLimitReached)
+  // Where included files and IES profiles may lie; empty: the scene file's own folder. A path outside
+  // it is refused (InputError, kExitBadInput) before it is opened.
+  std::string input_folder;
 };
 
 // What the reader met, for tests and reports. Array instances and repeated includes count each time.

@@ -9,6 +9,8 @@
 namespace walkrad {
 
 // Throws InputError for an unknown extension and whatever the format's reader throws.
-Scene read_scene(const std::string& path);
+// input_folder: where the files the scene refers to may lie (buffers, images, includes, IES profiles);
+// empty: the scene file's own folder. A reference outside it is refused before it is opened.
+Scene read_scene(const std::string& path, const std::string& input_folder = {});
 
 }  // namespace walkrad

@@ -43,6 +43,7 @@ Quality parse_quality(const std::string& word);
 struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
+  std::string input_folder; // where the files the scene refers to may lie; empty: the scene file's folder
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   Method method = Method::hierarchical;
