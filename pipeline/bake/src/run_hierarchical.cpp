@@ -165,12 +165,21 @@ class RoundReporter {
     previous_new_ = it.new_links;
     round_start_ = now;
     if (!progress_) return;
-    char eta[48] = "remaining unknown";
+    char eta[48] = "remaining unknown", estimate[48] = "";
     if (left >= 0) std::snprintf(eta, sizeof eta, "about %.0f s left", left);
-    std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e, %.1f s, %s\n",
+    if (it.estimated_error >= 0) std::snprintf(estimate, sizeof estimate, ", estimated error %.2f%%", 100 * it.estimated_error);
+    std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e%s, %.1f s, %s\n",
                  stats_.iterations.size(), static_cast<unsigned long long>(it.links),
                  static_cast<unsigned long long>(it.new_links), static_cast<unsigned long long>(it.elements), it.change,
-                 std::chrono::duration<double>(now - t0_).count(), eta);
+                 estimate, std::chrono::duration<double>(now - t0_).count(), eta);
+    if (stats_.stalled_round + 1 == int64_t(stats_.iterations.size()) && stats_.iterations.size() >= 3) {
+      const IterationStats& before = stats_.iterations[stats_.iterations.size() - 3];
+      std::fprintf(stderr,
+                   "walkrad: refinement stops: rounds %zu to %zu multiplied the links by %.1f for %.0f%% less estimated "
+                   "error (diminishing returns); the next round converges the links there are\n",
+                   stats_.iterations.size() - 2, stats_.iterations.size(), double(it.links) / double(before.links),
+                   100 * (1 - it.estimated_error / before.estimated_error));
+    }
   }
 
   // The wall time of each round run here (the rounds a resumed bake read back come first and have none):
@@ -219,12 +228,14 @@ json solver_report(const BakeSettings& s, const HierarchicalSettings& hs, const 
                       {"seconds", k < read_back ? json(nullptr) : json(round_seconds[k - read_back])},
                       {"change", it.change}, {"emitted_w", vec_json(it.emitted)}, {"absorbed_w", vec_json(it.absorbed)},
                       {"residual_w", vec_json(it.residual)}, {"clamped_leaves", it.clamped_leaves},
-                      {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes}});
+                      {"bytes_exchanged", it.bytes_exchanged}, {"sweep_bytes", it.sweep_bytes},
+                      {"estimated_error", it.estimated_error < 0 ? json(nullptr) : json(it.estimated_error)}});
   }
   return {{"iteration", iteration_name(s.solver)},
           {"oracle", stats.oracle}, {"error", s.error}, {"white", stats.white}, {"min_area", stats.min_area},
           {"above_tolerance", stats.above_tolerance},
           {"converged", stats.converged}, {"tolerance", hs.tolerance}, {"rounds", rounds},
+          {"refinement_stalled_after_round", stats.stalled_round < 0 ? json(nullptr) : json(stats.stalled_round + 1)},
           {"resumed_after_round", resumed_rounds},
           {"links_divided", stats.divided},  // among ranks (walkrad/hierarchical/link_owners.h)
           {"link_mb_peak", double(stats.link_bytes_peak) / double(1 << 20)},  // this rank's
@@ -260,6 +271,9 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
   // Over several ranks, say when every rank holds every link, and why (link_owners.h).
   if (ranks().size > 1 && ranks().rank == 0 && s.progress)
     if (const char* why = undivided_because(hs)) std::fprintf(stderr, "walkrad: every rank holds every link (%s)\n", why);
+  // Each round's estimate: what the round's links bought, shown in the progress, and where more links stop
+  // buying accuracy, the end of refinement (refinement_stalled).
+  hs.estimate = [&] { return error_estimate(*h, hits, views.size())["overall"].get<double>(); };
   HierarchicalStats stats;
   RoundReporter on_round(stats, phases, s.progress);
   try {

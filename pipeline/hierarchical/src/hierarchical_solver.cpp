@@ -69,7 +69,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
         oracle_.update_scales();
       }
       refinement_.refine_first();  // as high as links may go: the error is measured from round 1
-    } else {
+    } else if (!state.stalled) {
       oracle_.state().direct_weights = it == 1;
       if (it == 1) {
         oracle_.update_scales();
@@ -101,6 +101,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const bool settled = is.new_links == 0 && h_.element_count() == elements_before;  // (lights split elements too)
     if (settled && converged_before) {
       is.change = 0;
+      estimate_round(is);
       record(is, progress);
       stats_.converged = true;
       save_round(state, it, true);
@@ -151,9 +152,15 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     }
     converged_before = is.change <= s_.tolerance;
     is.sweep_bytes = ranks_bytes_exchanged() - sweeps_from;
-    record(is, progress);
+    estimate_round(is);
     const bool done = last && !settled && converged_before;
     if (done) stats_.converged = true;
+    is.links = stats_.links;
+    if (!done && !last && !state.stalled && refinement_stalled(stats_.iterations, is)) {
+      state.stalled = true;  // the next round refines nothing: it converges these links
+      stats_.stalled_round = it;
+    }
+    record(is, progress);
     save_round(state, it, done);
     if (done) break;
   }
@@ -164,6 +171,13 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   rank_work().links_held = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
     if (here(i)) rank_work().links_held += h_[i].links.size();
+}
+
+void Solver::estimate_round(IterationStats& is) {
+  if (!s_.estimate || stats_.links < s_.estimate_from_links) return;
+  // The measures refine_existing takes again before the next round's refinement: nothing a round reads.
+  oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
+  is.estimated_error = s_.estimate();
 }
 
 void Solver::save_round(RoundState& state, int round, bool finished) {
@@ -200,6 +214,16 @@ void Solver::record(IterationStats& is, const std::function<void(const Iteration
 }
 
 }  // namespace hierarchical_detail
+
+bool refinement_stalled(const std::vector<IterationStats>& rounds, const IterationStats& now) {
+  if (rounds.size() < 2) return false;
+  const IterationStats& before = rounds[rounds.size() - 2];
+  if (now.estimated_error < 0 || before.estimated_error < 0) return false;
+  // A rise is the round's sweeps not yet settled (office1's third round read 990% between 8.2% and 3.8%),
+  // not the end of what links buy.
+  return double(now.links) >= kStallGrowth * double(before.links) && now.estimated_error <= before.estimated_error &&
+         now.estimated_error > (1 - kStallGain) * before.estimated_error;
+}
 
 const char* indivisible_because(const HierarchicalSettings& s) {
   // Gauss-Seidel's order runs through every polygon in turn; the closure balance's column sums and a

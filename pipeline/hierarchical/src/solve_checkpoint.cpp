@@ -48,7 +48,7 @@ namespace {
 
 // HierarchicalStats field by field (its oracle is a string). A field added to it must be added here:
 // the size check below fails until it is.
-static_assert(sizeof(HierarchicalStats) == 224 + sizeof(std::vector<IterationStats>) + sizeof(std::string),
+static_assert(sizeof(HierarchicalStats) == 232 + sizeof(std::vector<IterationStats>) + sizeof(std::string),
               "HierarchicalStats changed: save and load the new field in solve_checkpoint.cpp");
 
 template <class Io, class Stats>
@@ -58,7 +58,7 @@ void each_stat(Io&& io, Stats& s) {
   io(s.light_rays), io(s.light_refinements), io(s.balance_iterations), io(s.mean_row_sum), io(s.balance_row_error);
   io(s.balance_column_error), io(s.balance_unbalanced), io(s.exact_links), io(s.volume_links), io(s.grid_segments);
   io(s.link_bytes_peak), io(s.divided), io(s.probed_pairs), io(s.probe_hidden), io(s.probe_rays);
-  io(s.proven_hidden);
+  io(s.proven_hidden), io(s.stalled_round);
 }
 
 }  // namespace

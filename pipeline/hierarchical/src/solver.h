@@ -36,12 +36,16 @@ class Solver {
   void balance_closed();
 
   void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress);
+  // The error the round leaves, as the bake estimates it (HierarchicalSettings::estimate), into is, once
+  // the solve holds HierarchicalSettings::estimate_from_links links.
+  void estimate_round(IterationStats& is);
 
   // Where run() stands between rounds, saved with the rest of the state (solve_checkpoint.cpp).
   struct RoundState {
     int next_round = 0;
     bool converged_before = false;
     bool finished = false;  // converged: what follows the rounds is all that is left
+    bool stalled = false;   // refinement_stalled: the rounds left only converge the links there are
   };
   void save_round(RoundState& state, int round, bool finished);
   void save_state(ByteWriter& out, const RoundState& round) const;

@@ -384,14 +384,6 @@ TEST_F(CornellHierarchical, OutputHasNoTJunctions) {
 namespace walkrad {
 namespace {
 
-// The progress line's estimate: halving waves leave as many links as the last round added.
-TEST(RefinementProgress, EstimatesTimeLeftFromTheShrinkingWave) {
-  EXPECT_NEAR(refinement_seconds_left(100, 50, 2.0), 2.0, 1e-12);
-  EXPECT_NEAR(refinement_seconds_left(100, 10, 9.0), 1.0, 1e-12);
-  EXPECT_LT(refinement_seconds_left(50, 100, 2.0), 0.0);  // still growing: unknown
-  EXPECT_EQ(refinement_seconds_left(100, 0, 2.0), 0.0);   // nothing added: done
-}
-
 // The clamp for coincident surfaces (row sum well above 1, link_transport.h) scales an unbalanced
 // leaf back to a row sum of 1, and leaves a balanced one alone: its receive factor pairs with its
 // sources' send factors, so a large factor against a row of 1 is not an excess.
