@@ -75,8 +75,11 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
         oracle_.update_scales();
         refinement_.refine_for_lights();
       }
-      oracle_.update_scales();
-      oracle_.measure_variation();
+      // The last round's estimate measured these from the same state (its weights too, past round 1).
+      if (estimated_round_ != it - 1 || it < 3) {
+        oracle_.update_scales();
+        oracle_.measure_variation();
+      }
       refinement_.refine_existing();
     }
     if (s_.check_limits) s_.check_limits("refinement", 0);
@@ -101,7 +104,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     const bool settled = is.new_links == 0 && h_.element_count() == elements_before;  // (lights split elements too)
     if (settled && converged_before) {
       is.change = 0;
-      estimate_round(is);
+      estimate_round(is, it);
       record(is, progress);
       stats_.converged = true;
       save_round(state, it, true);
@@ -152,7 +155,7 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     }
     converged_before = is.change <= s_.tolerance;
     is.sweep_bytes = ranks_bytes_exchanged() - sweeps_from;
-    estimate_round(is);
+    estimate_round(is, it);
     const bool done = last && !settled && converged_before;
     if (done) stats_.converged = true;
     is.links = stats_.links;
@@ -173,11 +176,12 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     if (here(i)) rank_work().links_held += h_[i].links.size();
 }
 
-void Solver::estimate_round(IterationStats& is) {
+void Solver::estimate_round(IterationStats& is, int round) {
   if (!s_.estimate || stats_.links < s_.estimate_from_links) return;
-  // The measures refine_existing takes again before the next round's refinement: nothing a round reads.
+  // Its scales and variation are those the next round's refinement reads (run() does not measure them again).
   oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
   is.estimated_error = s_.estimate();
+  estimated_round_ = round;
 }
 
 void Solver::save_round(RoundState& state, int round, bool finished) {

@@ -38,7 +38,7 @@ class Solver {
   void record(IterationStats& is, const std::function<void(const IterationStats&)>& progress);
   // The error the round leaves, as the bake estimates it (HierarchicalSettings::estimate), into is, once
   // the solve holds HierarchicalSettings::estimate_from_links links.
-  void estimate_round(IterationStats& is);
+  void estimate_round(IterationStats& is, int round);
 
   // Where run() stands between rounds, saved with the rest of the state (solve_checkpoint.cpp).
   struct RoundState {
@@ -96,6 +96,7 @@ class Solver {
   const double typical_area_;      // default_min_area: a 128th of the median polygon's side, squared
   ErrorOracle oracle_;             // tolerances and the error links leave (error_oracle.h)
   uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
+  int estimated_round_ = -1;       // the last round estimate_round measured
   const Division division_;        // how the solve is divided among ranks (division.h)
   Refinement refinement_;          // which nodes are linked (refinement.h)
   PendingList pending_;            // the round's new links, to evaluate (take_requests)
