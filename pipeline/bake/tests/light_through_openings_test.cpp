@@ -3,7 +3,7 @@
 // - a corridor lit only through a lit room's doorway, its floor one quad of 20 to 160 m: the points
 //   just past the door agree with the reference whatever the length (a few rays from the far end of a
 //   long floor miss a 1 m doorway; such a link is not settled dark, and a wall dark but for the
-//   patch the doorway lights is not taken at its mean: solver.h, Solver::unresolved, and
+//   patch the doorway lights is not taken at its mean: solver.h, Refinement::unresolved, and
 //   error_estimate.cpp, worth_splitting);
 // - a hall whose one quad of floor is lit through one window (and, disabled while it fails, the same
 //   hall lit by what a courtyard outside the window reflects);

@@ -151,7 +151,7 @@ struct HierarchicalStats {
   uint64_t receiver_splits = 0;        // receivers whose links went down to their children (variation)
   uint64_t recast = 0;                 // wholly hidden links cast again with more rays
   uint64_t proven_hidden = 0;          // links every ray of which was blocked, proven hidden and dropped
-  uint64_t probed_pairs = 0, probe_hidden = 0, probe_rays = 0;  // pairs probed before a split, with rays cast (Solver::probe)
+  uint64_t probed_pairs = 0, probe_hidden = 0, probe_rays = 0;  // pairs probed before a split, with rays cast (Refinement::probe)
   bool converged = false;
   int64_t stalled_round = -1;          // the round after which refinement stopped, its returns diminished (refinement_stalled)
   std::string oracle;                  // "importance" or "view-independent"

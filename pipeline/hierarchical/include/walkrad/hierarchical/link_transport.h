@@ -67,7 +67,7 @@ BalanceStats balance_closed_transport(Hierarchy& h, double tolerance = 1e-9, int
 // Coarse links leave office-floor's leaves a mean row sum of 0.97 (area-weighted), and its visited
 // rooms 2.9% too dark; scaled, 1.1% (see docs/numerics.md). Leaves whose raw row sum lies
 // outside [1/4, 4] keep 1, and so do the leaves `unscaled` marks (under a close cluster pair left whole:
-// Solver::under_close_pairs). Returns the number of such leaves; mean_row: the area-weighted mean raw sum.
+// Refinement::under_close_pairs). Returns the number of such leaves; mean_row: the area-weighted mean raw sum.
 uint64_t normalise_closed_rows(Hierarchy& h, double* mean_row = nullptr, const std::vector<uint8_t>* unscaled = nullptr);
 
 // What aggregation_correction fills, kept by a caller that corrects again and again (the solve's
