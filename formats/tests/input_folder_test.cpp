@@ -26,6 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kCorpus = std::string(WALKRAD_SOURCE_DIR) + "/tests/fuzz/corpus/";
+const std::string kOutside = "lies outside the input folder";
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -83,7 +84,7 @@ class InputFolder : public ::testing::Test {
   // opened.
   template <typename Read>
   void expect_confined(Read&& read, const std::string& file, const std::string& watched,
-                       const std::string& why = "lies outside the input folder") {
+                       const std::string& why = kOutside) {
     const OpenWatch watch(watched);
     try {
       read();
@@ -92,6 +93,8 @@ class InputFolder : public ::testing::Test {
       EXPECT_EQ(e.file(), file) << e.what();
       EXPECT_EQ(e.code(), kExitBadInput) << e.what();
       EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+      if (why == kOutside)  // the refusal names the way out
+        EXPECT_NE(std::string(e.what()).find("--input-folder"), std::string::npos) << e.what();
     }
     EXPECT_FALSE(watch.opened()) << watched << " was opened before it was refused";
   }
@@ -177,11 +180,6 @@ TEST_F(InputFolder, MgfIncludesAndLuminairesAreReadOnlyFromTheScenesFolder) {
   EXPECT_EQ(s.lights.size(), 1u);
 
   const std::string include = write("scene/include.mgf", "i ../outside/part.mgf\n");
-  try {
-    read_mgf(include);
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--input-folder"), std::string::npos) << "the refusal names the way out: " << e.what();
-  }
   expect_confined([&] { read_mgf(include); }, include, outside_part);
   const std::string luminaire = write("scene/luminaire.mgf", face + "ies ../outside/lamp.ies\n");
   expect_confined([&] { read_mgf(luminaire); }, luminaire, outside_ies);

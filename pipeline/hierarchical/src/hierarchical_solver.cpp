@@ -59,7 +59,9 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
   if (s_.resume) state = load_state(*s_.resume);
   exchanged_before_ = ranks_bytes_exchanged();  // the rounds' own exchanges, not reading the inputs
   bool& converged_before = state.converged_before;
+  int last_round = -1;
   for (int it = state.next_round; !state.finished && it < s_.max_iterations; ++it) {
+    last_round = it;
     IterationStats is;
     const uint64_t before = refinement_.new_link_count();
     const size_t elements_before = h_.element_count();
@@ -167,9 +169,12 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
     save_round(state, it, done);
     if (done) break;
   }
-  // The error each node's own links leave in its radiosity (HNode::error) and the statistics.
+  // The error each node's own links leave in its radiosity (HNode::error) and the statistics: the last
+  // round's estimate measured them from this same state.
   stats_.above_tolerance +=
-      oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
+      last_round >= 0 && estimated_round_ == last_round
+          ? estimated_above_
+          : oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
   stats_.white = oracle_.state().white;
   rank_work().links_held = 0;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
@@ -179,7 +184,8 @@ void Solver::run(const std::function<void(const IterationStats&)>& progress) {
 void Solver::estimate_round(IterationStats& is, int round) {
   if (!s_.estimate || stats_.links < s_.estimate_from_links) return;
   // Its scales and variation are those the next round's refinement reads (run() does not measure them again).
-  oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
+  estimated_above_ =
+      oracle_.measure_left_error([&](uint32_t i) { return here(i); }, [&](uint32_t i) { return refinement_.splittable(i); });
   is.estimated_error = s_.estimate();
   estimated_round_ = round;
 }

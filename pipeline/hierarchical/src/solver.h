@@ -96,7 +96,8 @@ class Solver {
   const double typical_area_;      // default_min_area: a 128th of the median polygon's side, squared
   ErrorOracle oracle_;             // tolerances and the error links leave (error_oracle.h)
   uint64_t exchanged_before_ = 0;  // ranks_bytes_exchanged() when the last round was recorded
-  int estimated_round_ = -1;       // the last round estimate_round measured
+  int estimated_round_ = -1;       // the last round estimate_round measured,
+  uint64_t estimated_above_ = 0;   // and how many nodes it left above their tolerance
   const Division division_;        // how the solve is divided among ranks (division.h)
   Refinement refinement_;          // which nodes are linked (refinement.h)
   PendingList pending_;            // the round's new links, to evaluate (take_requests)
