@@ -4,6 +4,7 @@
 // hang is a finding (docs/reliability.md).
 #pragma once
 
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -12,17 +13,25 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "walkrad/formats/error.h"
 
 namespace walkrad::fuzz {
 
-// A per-process file named for the target, in $TMPDIR (or /tmp), rewritten for every input.
+// A per-process file in a private folder of $TMPDIR (or /tmp), rewritten for every input. The
+// folder is the input's whole input folder: the URIs and includes a fuzzer invents can name only
+// the input itself, whatever else lies in /tmp, so a run replays the same way anywhere.
 inline const std::string& input_path(const char* extension) {
   static const std::string path = [&] {
-    const char* dir = std::getenv("TMPDIR");
-    return std::string(dir && *dir ? dir : "/tmp") + "/walkrad-fuzz-" + std::to_string(getpid()) + extension;
+    const char* tmp = std::getenv("TMPDIR");
+    const std::string dir = std::string(tmp && *tmp ? tmp : "/tmp") + "/walkrad-fuzz-" + std::to_string(getpid());
+    if (mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST) {
+      std::fprintf(stderr, "fuzz: cannot make %s\n", dir.c_str());
+      std::abort();
+    }
+    return dir + "/input" + extension;
   }();
   return path;
 }
