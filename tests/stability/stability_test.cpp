@@ -641,5 +641,38 @@ TEST_F(BadGeometry, ReflectanceOneBakesWhereSomethingAbsorbsAndIsRefusedWhereNot
   EXPECT_NO_THROW(bake(o));
 }
 
+// ---- Light that cannot decay inside a scene that absorbs: a sealed box, white inside (rd 1), whose
+// floor glows, standing in the grey room. The room absorbs, so the whole-scene check passes, but in
+// the box every bounce returns all the light. Refused before anything is solved, naming the box's
+// polygons by their MGF lines, nothing written. Dark, or with a floor that absorbs, it bakes.
+TEST_F(BadGeometry, ASealedWhiteBoxAroundALightIsRefusedNamingItsPolygons) {
+  std::string box = "m white =\n\tsides 1\n\trd 1\nm glow =\n\tsides 1\n\trd 1\n\ted 100\n";
+  for (int k = 0; k < 8; ++k)
+    box += "v b" + std::to_string(k) + " =\n\tp " + ((k & 1) ? "1.3 " : "0.7 ") + ((k & 2) ? "1.3 " : "0.7 ") + ((k & 4) ? "1.3" : "0.7") + "\n";
+  // Faces inwards, as the room's (the same corner order); the glowing floor last, at line 71.
+  box += "m white\nf b4 b6 b7 b5\nf b0 b4 b5 b1\nf b2 b3 b7 b6\nf b0 b2 b6 b4\nf b1 b5 b7 b3\nm glow\nf b0 b1 b3 b2\n";
+  const std::string sealed = room_variant("sealed", {{"m lamp\nf l1 l2 l3 l4\n", "m lamp\nf l1 l2 l3 l4\n" + box}});
+  try {
+    bake(settings(sealed, "sealed"));
+    ADD_FAILURE() << "a lit box that absorbs nothing was baked";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), kExitBadInput) << e.what();
+    EXPECT_EQ(e.file(), sealed) << e.what();
+    EXPECT_NE(std::string(e.what()).find("6 polygons (materials 'white', 'glow'; MGF lines 65, 66, 67, 68, 69, 71)"),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("in red, green, blue"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("radiosity has no finite value"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "sealed"));
+  const auto bakes_finite = [&](const std::string& name, const std::string& from, const std::string& to) {
+    const std::string path = room_variant(name, {{"m lamp\nf l1 l2 l3 l4\n", "m lamp\nf l1 l2 l3 l4\n" + box}, {from, to}});
+    BakeSettings b = settings(path, name);
+    ASSERT_NO_THROW(bake(b)) << name;
+    for (float v : read_bake_mesh(b.output).radiosity) ASSERT_TRUE(std::isfinite(v)) << name;
+  };
+  bakes_finite("sealed-dark", "\ted 100\nv b0", "\ted 0\nv b0");
+  bakes_finite("sealed-grey-floor", "\trd 1\n\ted 100", "\trd 0.8\n\ted 100");
+}
+
 }  // namespace
 }  // namespace walkrad::stability

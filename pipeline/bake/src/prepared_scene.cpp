@@ -5,6 +5,7 @@
 
 #include "walkrad/core/file_hash.h"
 #include "walkrad/formats/error.h"
+#include "walkrad/plan/lossless_enclosure.h"
 #include "walkrad/scene/transmission_twins.h"
 
 namespace walkrad::bake_detail {
@@ -40,6 +41,25 @@ void refuse_lossless_enclosure(const Scene& scene, const RayScene& rays, const C
                              "the light, so radiosity has no finite value; give some surface a reflectance below 1");
 }
 
+// Lossless polygons closed among themselves with a light inside, anywhere in the scene (a sealed white
+// box around a lamp): refused, naming them and the channels, before anything is solved.
+void refuse_lit_enclosures(const Scene& scene, const RayScene& rays, const std::vector<uint32_t>& twins,
+                           const std::string& file) {
+  const std::vector<LosslessEnclosure> found = find_lossless_enclosures(scene, rays, twins);
+  for (const LosslessEnclosure& e : found) {
+    if (!e.lit) continue;
+    static const char* kNames[] = {"red", "green", "blue"};
+    std::string channels, lights;
+    for (const LosslessEnclosure& same : found)  // the same polygons, lit, in other channels
+      if (same.lit && same.polygons == e.polygons) channels += std::string(channels.empty() ? "" : ", ") + kNames[same.channel];
+    for (uint32_t l : e.lights) lights += std::string(lights.empty() ? " and light '" : ", '") + scene.lights[l].name + "'";
+    throw InputError(file, "", describe_polygons(scene, e.polygons) + lights +
+                                   " enclose a light and absorb none of it (reflectance + transmittance = 1 in " + channels +
+                                   "): every bounce returns all the light, so radiosity has no finite value there; give "
+                                   "one of them a reflectance below 1, or open them");
+  }
+}
+
 // Identifies what the extinction grid is made from: every polygon's corners and the volume settings
 // (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
 std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
@@ -70,6 +90,7 @@ PreparedScene::PreparedScene(BakeInputs& inputs, const BakeSettings& s)
       volume_settings(volume_settings_of(s)),
       volume_clusters(s.method == Method::hierarchical ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{}) {
   refuse_lossless_enclosure(scene, rays, tree, s.scene);
+  refuse_lit_enclosures(scene, rays, twins, s.scene);
   plan = plan_effects(scene, rays, inputs.views, s.view_independent, s.method, s.effects, &volume_clusters, &tree);
   plan.transmission = transmission;
 }
