@@ -85,9 +85,16 @@ void check_draco(const char* text, size_t size, const unsigned char* bin, size_t
         const int64_t uid = id.get<int64_t>();
         if (uid < 0 || uid > INT32_MAX || !dm.GetAttributeByUniqueId(uint32_t(uid)))
           throw InputError(file, place + "/attributes/" + name, "no Draco attribute with id " + std::to_string(uid));
+        const draco::PointAttribute& attribute = *dm.GetAttributeByUniqueId(uint32_t(uid));
+        // At most 4 components (glTF's largest vector): tinygltf converts each point into a 4-value
+        // array on the stack (a fuzzing finding: a NORMAL of 9 components overflowed it).
+        if (attribute.num_components() < 1 || attribute.num_components() > 4)
+          throw InputError(file, place + "/attributes/" + name,
+                           "the Draco attribute has " + std::to_string(int(attribute.num_components())) +
+                               " components (glTF's vectors have 1 to 4)");
         // glTF's component types only: tinygltf converts through Draco's templates, which read a bool
         // attribute's bytes as bool (a fuzzing finding: undefined behaviour on the byte 128).
-        switch (dm.GetAttributeByUniqueId(uint32_t(uid))->data_type()) {
+        switch (attribute.data_type()) {
           case draco::DT_INT8: case draco::DT_UINT8: case draco::DT_INT16: case draco::DT_UINT16:
           case draco::DT_UINT32: case draco::DT_FLOAT32:
             break;

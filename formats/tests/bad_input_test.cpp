@@ -136,6 +136,9 @@ TEST_F(BadInput, DracoReferencesAreCheckedBeforeTinygltf) {
   std::copy(text.begin(), text.end(), bad.begin() + 20);
   const std::string p = write("draco-id.glb", bad);
   expect_refused([&] { read_chunk(p); }, p, kExitBadInput, {"attributes/COLOR_0", "no Draco attribute with id 7"});
+  // A Draco attribute of more components than a glTF vector has (tinygltf's 4-value stack array overflowed).
+  const std::string wide = std::string(WALKRAD_SOURCE_DIR) + "/tests/fuzz/crashers/chunk/draco-attribute-nine-components.glb";
+  expect_refused([&] { read_chunk(wide); }, wide, kExitBadInput, {"attributes/NORMAL", "has 9 components"});
 }
 
 TEST_F(BadInput, DeepJsonIsALimit) {

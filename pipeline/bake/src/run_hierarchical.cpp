@@ -13,6 +13,7 @@
 #include "walkrad/core/ranks.h"
 #include "walkrad/formats/error.h"
 #include "walkrad/hierarchical/display_refinement.h"
+#include "walkrad/hierarchical/estimated_error.h"
 #include "walkrad/hierarchical/final_gather.h"
 #include "walkrad/hierarchical/hierarchical_solver.h"
 #include "walkrad/hierarchical/hierarchy_audit.h"
@@ -30,49 +31,18 @@ namespace {
 // asks for less only where it is larger).
 constexpr double kSweepShareOfError = 5e-3;
 
-// The bake's own estimate of its error, as the sweep measures error (relative RMS of luminance,
-// each point weighed by the solid angle it covers; emitters left out): at every primary-ray hit of
-// the walkthrough, the leaf's estimated error is the root sum square of the errors its own links and
-// its ancestors' leave (HNode::error). Over the whole walkthrough and per stretch of it (its frames cut
-// into at most 8 consecutive segments). Without viewpoints, over the leaves by area.
+// estimate_error (estimated_error.h) as report.json writes it.
 json error_estimate(const Hierarchy& h, const std::vector<ViewHit>& hits, size_t view_count) {
-  std::vector<double> chain(h.nodes().size(), 0.0);  // Σ error² from the root down
-  for (uint32_t i = 0; i < h.nodes().size(); ++i) {  // parents come before their children
-    const double own = double(h[i].error) * double(h[i].error);
-    chain[i] = own + (h[i].parent >= 0 ? chain[uint32_t(h[i].parent)] : 0.0);
-  }
-  auto ratio = [](double err, double ref) { return ref > 0 ? std::sqrt(err / ref) : 0.0; };
-  json out = {{"measure", "relative RMS of luminance, weighted by solid angle (as walkrad sweep's rms_weighted)"}};
-  if (hits.empty() || view_count == 0) {
-    double err = 0, ref = 0;
-    for (uint32_t i = 0; i < h.nodes().size(); ++i)
-      if (is_leaf_element(h[i]) && max_component(h[i].emission) == 0) {
-        err += h[i].area * chain[i];
-        ref += h[i].area * luminance(h[i].B) * luminance(h[i].B);
-      }
-    out["overall"] = ratio(err, ref);
+  const EstimatedError e = estimate_error(h, hits, view_count);
+  json out = {{"measure", "relative RMS of luminance, weighted by solid angle (as walkrad sweep's rms_weighted)"},
+              {"overall", e.overall}};
+  if (!e.over_views) {
     out["over"] = "surfaces, by area (no viewpoints)";
     return out;
   }
-  constexpr size_t kSegments = 8;
-  const size_t segments = std::min(kSegments, view_count);
-  std::vector<double> err(segments, 0.0), ref(segments, 0.0);
-  for (const ViewHit& hit : hits) {
-    const uint32_t leaf = leaf_at(h, h.polygon_root(hit.polygon), hit.point);
-    if (max_component(h[leaf].emission) > 0) continue;
-    const size_t k = std::min(segments - 1, size_t(hit.view) * segments / view_count);
-    err[k] += hit.weight * chain[leaf];
-    ref[k] += hit.weight * luminance(h[leaf].B) * luminance(h[leaf].B);
-  }
-  double e = 0, r = 0;
   json per = json::array();
-  for (size_t k = 0; k < segments; ++k) {
-    e += err[k];
-    r += ref[k];
-    per.push_back({{"first_view", k * view_count / segments}, {"last_view", (k + 1) * view_count / segments - 1},
-                   {"estimated_error", ratio(err[k], ref[k])}});
-  }
-  out["overall"] = ratio(e, r);
+  for (const EstimatedError::Segment& k : e.segments)
+    per.push_back({{"first_view", k.first_view}, {"last_view", k.last_view}, {"estimated_error", k.error}});
   out["over"] = "the walkthrough's primary-ray hits";
   out["segments"] = per;
   return out;
@@ -273,7 +243,7 @@ MethodResult run_hierarchical(const BakeSettings& s, const Scene& scene, const R
     if (const char* why = undivided_because(hs)) std::fprintf(stderr, "walkrad: every rank holds every link (%s)\n", why);
   // Each round's estimate: what the round's links bought, shown in the progress, and where more links stop
   // buying accuracy, the end of refinement (refinement_stalled).
-  hs.estimate = [&] { return error_estimate(*h, hits, views.size())["overall"].get<double>(); };
+  hs.estimate = [&] { return estimate_error(*h, hits, views.size()).overall; };
   HierarchicalStats stats;
   RoundReporter on_round(stats, phases, s.progress);
   try {
