@@ -17,6 +17,9 @@ shift || true
 targets=("$@")
 ((${#targets[@]})) || targets=(gltf chunk walkthrough manifest mgf ies)
 build=${WALKRAD_FUZZ_BUILD_DIR:-$here/build-fuzz}
+# Each input is written to a file before it is read (tests/fuzz/fuzz_input.h): in memory, not on disk
+# (3.0 times the runs a second here: 8,889 against 2,970 for the manifest target).
+[ -z "${TMPDIR:-}" ] && [ -w /dev/shm ] && export TMPDIR=/dev/shm
 parallel=${WALKRAD_FUZZ_PARALLEL:-1}
 "$here/scripts/install-deps.sh" --fuzz
 
