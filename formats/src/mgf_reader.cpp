@@ -32,9 +32,11 @@ using mgf::Loop;
 constexpr size_t kMaxIncludeDepth = 32;
 constexpr long kMaxInstances = 1'000'000;  // array instances (and -i repeats) alive at once
 // Entities handled in all, arrays' repeats included: nested arrays multiply, and a 1 KiB file could
-// make 10^9 (a fuzzing finding: 12 M in a 1.3 KiB file, 4 s). The largest classic scene here (the
-// hospital, ../shared/scenes/mgf) handles about 67,000: the limit is 30 times that.
-constexpr uint64_t kMaxHandled = 2'000'000;
+// make 10^9 (fuzzing findings: 12 M in a 1.3 KiB file, 4 s; a 2.5 KiB file of nested arrays at the
+// 2,000,000 this limit was, 0.47 s in Release and 7.4 s under ASan). The largest classic scenes here
+// (the hospital, ../shared/scenes/mgf, and RenderPark's office1) handle about 67,000 and 59,000: the
+// limit is 15 times that.
+constexpr uint64_t kMaxHandled = 1'000'000;
 constexpr size_t kMaxFaceVertices = 4096;  // ear clipping is quadratic; MGF lines hold 4096 characters
 
 // One entity: its keyword and arguments, and the line it starts on.
@@ -653,7 +655,7 @@ class Reader {
     w.insert(w.end(), warnings_.begin(), warnings_.end());
     if (!unstated_sides_.empty() && options_.default_sides == 1)
       w.push_back(std::to_string(unstated_sides_.size()) +
-                  " materials do not state 'sides': read as one-sided, as RenderPark does (MGF's default is two-sided)");
+                  " materials do not state 'sides': read as one-sided, as RenderPark does (MGF's default is two-sided: --mgf-sides 2)");
     for (const auto& [what, names] : ignored_)
       w.push_back(what + " ignored in " + std::to_string(names.size()) + " materials (" + some(names) +
                   "): walkrad's materials are diffuse");

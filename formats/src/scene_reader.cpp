@@ -11,13 +11,14 @@
 
 namespace walkrad {
 
-Scene read_scene(const std::string& path, const std::string& input_folder) {
+Scene read_scene(const std::string& path, const std::string& input_folder, int mgf_sides) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".gltf" || ext == ".glb") return read_gltf(path, input_folder);
   if (ext == ".mgf") {
     MgfOptions options;
     options.input_folder = input_folder;
+    options.default_sides = mgf_sides;
     return read_mgf(path, options);
   }
   throw InputError(path, "", "unknown scene format '" + ext + "' (walkrad reads .gltf, .glb and .mgf)", kExitBadInput);

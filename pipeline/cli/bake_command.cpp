@@ -19,6 +19,9 @@ void add_bake(CLI::App& app, BakeCommand& c) {
   c.app->add_option("--input-folder", c.bs.input_folder,
                     "the only folder whose files the scene may refer to: buffers, images, MGF includes, IES profiles (default: the scene file's folder)")
       ->check(CLI::ExistingDirectory);
+  c.app->add_option("--mgf-sides", c.bs.mgf_sides,
+                    "MGF: the sides of a material that does not state them: 1, as RenderPark reads them, or 2, MGF's own default")
+      ->check(CLI::IsMember({1, 2}))->capture_default_str();
   c.app->add_option("-o,--output", c.bs.output, "output folder (default: <scene name>.bake)");
   c.app->add_option("--method", c.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
       ->capture_default_str();

@@ -15,6 +15,9 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
   c.app->add_option("--input-folder", c.input_folder,
                     "the only folder whose files the scene may refer to: buffers, images, MGF includes, IES profiles (default: the scene file's folder)")
       ->check(CLI::ExistingDirectory);
+  c.app->add_option("--mgf-sides", c.mgf_sides,
+                    "MGF: the sides of a material that does not state them: 1, as RenderPark reads them, or 2, MGF's own default")
+      ->check(CLI::IsMember({1, 2}))->capture_default_str();
   c.app->add_option("output", c.output, "glTF file to write (.glb or .gltf)")->required()->check(
       [](const std::string& out) {
         const size_t dot = out.find_last_of('.');
@@ -26,7 +29,7 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
 
 int run_convert(const ConvertCommand& c) {
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = read_scene(c.scene, c.input_folder);
+  const Scene scene = read_scene(c.scene, c.input_folder, c.mgf_sides);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", c.scene.c_str(), w.c_str());
   write_scene_gltf(scene, c.output);
   size_t emitting = 0;

@@ -14,6 +14,9 @@ void add_sweep(CLI::App& app, SweepCommand& c) {
   c.app->add_option("--input-folder", c.ss.input_folder,
                     "the only folder whose files the scene may refer to: buffers, images, MGF includes, IES profiles (default: the scene file's folder)")
       ->check(CLI::ExistingDirectory);
+  c.app->add_option("--mgf-sides", c.ss.mgf_sides,
+                    "MGF: the sides of a material that does not state them: 1, as RenderPark reads them, or 2, MGF's own default")
+      ->check(CLI::IsMember({1, 2}))->capture_default_str();
   c.app->add_option("-o,--output", c.ss.output, "output folder (default: <scene name>.sweep)");
   c.app->add_option("--methods", c.ss.methods,
                         "classic (Gauss-Seidel), southwell (classic, progressive refinement), hemicube (classic, hemicube form "

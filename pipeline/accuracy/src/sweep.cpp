@@ -289,6 +289,7 @@ json measure_run(const SweepSettings& s, const Run& run, const SweepReference& r
     std::vector<std::string> args{"bake", s.scene, "-o", dir, "-q", "--exposure", "1"};
     if (!s.views.empty()) args.insert(args.end(), {"--views", s.views});
     if (!s.input_folder.empty()) args.insert(args.end(), {"--input-folder", s.input_folder});
+    if (s.mgf_sides != 1) args.insert(args.end(), {"--mgf-sides", std::to_string(s.mgf_sides)});
     if (s.threads > 0) args.insert(args.end(), {"--threads", std::to_string(s.threads)});
     args.insert(args.end(), run.args.begin(), run.args.end());
     const std::string log_path = out.path("bakes/" + run.name + ".log");
@@ -366,7 +367,7 @@ bool plot(StagedOutput& out) {
 SweepSummary run_sweep(const SweepSettings& s) {
   std::unique_ptr<tbb::global_control> limit;
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
-  Scene scene = read_scene(s.scene, s.input_folder);
+  Scene scene = read_scene(s.scene, s.input_folder, s.mgf_sides);
   remove_duplicate_polygons(scene);
   const std::vector<Viewpoint> views = s.views.empty() ? scene.cameras : read_walkthrough(s.views);
   if (views.empty())

@@ -160,12 +160,14 @@ json ranks_report() {
 }  // namespace
 
 json BakeSettings::to_json() const {
-  return {{"method", method_name(method)}, {"solver", iteration_name(solver)}, {"error", error}, {"view_independent", view_independent},
+  json j = {{"method", method_name(method)}, {"solver", iteration_name(solver)}, {"error", error}, {"view_independent", view_independent},
           {"min_area", min_area}, {"element_size", element_size}, {"form_factors", form_factors_name(form_factors)}, {"hemicube_resolution", hemicube_resolution},
           {"rays", rays_per_point}, {"exposure", exposure},
           {"tolerance", tolerance}, {"max_iterations", max_iterations}, {"chunk_triangles", chunk_triangles},
           {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
           {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
+  if (mgf_sides != 1) j["mgf_sides"] = mgf_sides;  // recorded where it departs from the default (older manifests the same)
+  return j;
 }
 
 double quality_error(Quality quality) {

@@ -125,7 +125,7 @@ BakeInputs read_bake_inputs(const BakeSettings& s) {
   BakeInputs in;
   std::vector<uint8_t> bytes;
   if (ranks().rank == 0) {
-    in.scene = read_scene(s.scene, s.input_folder);
+    in.scene = read_scene(s.scene, s.input_folder, s.mgf_sides);
     if (const uint64_t copies = remove_duplicate_polygons(in.scene))
       in.scene.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
     in.views = s.views.empty() ? in.scene.cameras : read_walkthrough(s.views);

@@ -5,6 +5,8 @@
 
 #include "walkrad/core/file_hash.h"
 #include "walkrad/formats/error.h"
+#include "walkrad/core/ranks.h"
+#include "walkrad/plan/back_lit.h"
 #include "walkrad/plan/lossless_enclosure.h"
 #include "walkrad/scene/transmission_twins.h"
 
@@ -60,6 +62,15 @@ void refuse_lit_enclosures(const Scene& scene, const RayScene& rays, const std::
   }
 }
 
+// Most of the light lost on the backs of one-sided polygons: warned (stderr and report.json), not refused.
+void warn_back_lit(const Scene& scene, const RayScene& rays, const std::string& file, std::vector<std::string>& warnings) {
+  const std::string ext = std::filesystem::path(file).extension().string();
+  const std::string w = back_lit_warning(scene, light_on_back_faces(scene, rays), ext == ".mgf" || ext == ".MGF");
+  if (w.empty()) return;
+  if (ranks().rank == 0) std::fprintf(stderr, "walkrad: warning: %s: %s\n", file.c_str(), w.c_str());
+  warnings.push_back(w);
+}
+
 // Identifies what the extinction grid is made from: every polygon's corners and the volume settings
 // (FNV-1a 64 over their bytes). A rebake with the same key reuses the grid.
 std::string volume_key(const Scene& scene, const VolumeSettings& vs) {
@@ -91,6 +102,7 @@ PreparedScene::PreparedScene(BakeInputs& inputs, const BakeSettings& s)
       volume_clusters(s.method == Method::hierarchical ? find_volume_clusters(scene, tree, volume_settings) : VolumeClusters{}) {
   refuse_lossless_enclosure(scene, rays, tree, s.scene);
   refuse_lit_enclosures(scene, rays, twins, s.scene);
+  warn_back_lit(scene, rays, s.scene, inputs.scene.warnings);
   plan = plan_effects(scene, rays, inputs.views, s.view_independent, s.method, s.effects, &volume_clusters, &tree);
   plan.transmission = transmission;
 }

@@ -72,7 +72,21 @@ void ErrorOracle::update_scales() {
     below += w;
     if (below >= 0.95 * total) break;
   }
-  state_.white = p95 / 0.9;
+  // Nothing lit yet (before the first sweeps): 0, and nothing is refined on it (worth_splitting).
+  state_.white = p95 > 0 ? std::max(p95 / 0.9, kWhiteFloor * light_density()) : 0.0;
+}
+
+double ErrorOracle::light_density() const {
+  if (light_density_ >= 0) return light_density_;
+  double power = 0, area = 0;
+  for (const HNode& n : h_.nodes())
+    if (!n.cluster && n.depth == 0) {
+      area += n.area;
+      power += n.area * luminance(n.emission);
+    }
+  for (const PunctualLight& l : h_.scene().lights) power += 4 * kPi * luminance(l.intensity);  // at most
+  light_density_ = area > 0 ? power / area : 0.0;
+  return light_density_;
 }
 
 double ErrorOracle::display_weight(uint32_t i) const {

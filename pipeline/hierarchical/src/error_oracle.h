@@ -116,12 +116,19 @@ class ErrorOracle {
   // Below this share of the white, the tolerance stops falling with the radiosity (dark surfaces are
   // held to an absolute error, not a relative one).
   static constexpr double kDarkShare = 0.1;
+  // The white never falls below this share of the light's mean over the surfaces (emitted power over
+  // their area, light_density). Where nearly all of a scene turns its back to the lights (a room of
+  // one-sided slabs facing into themselves) the 95th percentile is dust, 1e-13 of the lights, and every
+  // threshold relative to it passes: refinement runs to the minimum element everywhere light falls.
+  static constexpr double kWhiteFloor = 0.1;
+  double light_density() const;
 
   Hierarchy& h_;
   const HierarchicalSettings& s_;
   const double quantum_area_;
   bool importance_ = false;
   double seen_density_ = 0;
+  mutable double light_density_ = -1;  // light_density(), once
   OracleState state_;
 };
 

@@ -11,6 +11,7 @@ namespace walkrad {
 // Throws InputError for an unknown extension and whatever the format's reader throws.
 // input_folder: where the files the scene refers to may lie (buffers, images, includes, IES profiles);
 // empty: the scene file's own folder. A reference outside it is refused before it is opened.
-Scene read_scene(const std::string& path, const std::string& input_folder = {});
+// mgf_sides: the sides of an MGF material that does not state them (MgfOptions::default_sides).
+Scene read_scene(const std::string& path, const std::string& input_folder = {}, int mgf_sides = 1);
 
 }  // namespace walkrad

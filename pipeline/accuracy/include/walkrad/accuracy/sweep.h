@@ -16,6 +16,7 @@ struct SweepSettings {
   std::string scene;
   std::string views;    // walkthrough JSON; empty: the scene's cameras
   std::string input_folder;  // where the files the scene refers to may lie; empty: the scene file's folder
+  int mgf_sides = 1;         // MGF: the sides of a material that does not state them (BakeSettings::mgf_sides)
   std::string output;   // the sweep folder (staged, swapped into place when complete)
   std::string command;  // the command line, recorded in sweep.json and the report
   std::vector<std::string> methods = {"classic", "hierarchical", "importance"};

@@ -44,6 +44,7 @@ struct BakeSettings {
   std::string scene;        // .gltf / .glb
   std::string views;        // walkthrough JSON; empty: the scene's cameras
   std::string input_folder; // where the files the scene refers to may lie; empty: the scene file's folder
+  int mgf_sides = 1;        // MGF: the sides of a material that does not state them (1 as RenderPark reads, or 2)
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   Method method = Method::hierarchical;

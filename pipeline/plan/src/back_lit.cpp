@@ -1,0 +1,101 @@
+#include "walkrad/plan/back_lit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "walkrad/core/sampling.h"
+
+namespace walkrad {
+
+namespace {
+
+struct Light {
+  double power = 0;
+  int64_t polygon = -1;  // else the punctual light's index in scene.lights, as -2 - index
+};
+
+Vec3 cosine_around(const Vec3& n, Rng& rng) {
+  const Vec3 t = normalize(cross(std::fabs(n.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), n));
+  const Vec3 b = cross(n, t);
+  const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
+  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r * r));
+}
+
+// Uniform over the cap of half-angle `cone` about axis (the sphere for cone = π).
+Vec3 in_cone(const Vec3& axis, double cone, Rng& rng) {
+  const Vec3 t = normalize(cross(std::fabs(axis.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), axis));
+  const Vec3 b = cross(axis, t);
+  const double z = 1 - rng.uniform() * (1 - std::cos(cone)), phi = 2 * kPi * rng.uniform();
+  const double s = std::sqrt(std::max(0.0, 1 - z * z));
+  return t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + axis * z;
+}
+
+}  // namespace
+
+BackLight light_on_back_faces(const Scene& scene, const RayScene& rays) {
+  std::vector<Light> lights;
+  double total = 0;
+  for (size_t i = 0; i < scene.polygons.size(); ++i) {
+    const double p = polygon_area(scene.polygons[i]) * luminance(scene.materials[scene.polygons[i].material].emission);
+    if (p > 0) lights.push_back({p, int64_t(i)});
+  }
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    const PunctualLight& light = scene.lights[l];
+    const double cone = light.type == PunctualLight::Type::spot ? light.outer_cone : kPi;
+    const double p = 2 * kPi * (1 - std::cos(cone)) * luminance(light.intensity);  // at most (an IES light's peak)
+    if (p > 0) lights.push_back({p, -2 - int64_t(l)});
+  }
+  for (const Light& l : lights) total += l.power;
+  BackLight out;
+  if (total <= 0) return out;
+  std::map<uint32_t, double> by_material;
+  for (size_t k = 0; k < lights.size(); ++k) {
+    const Light& l = lights[k];
+    const auto n = uint64_t(std::ceil(double(kBackLitRays) * l.power / total));  // at least one a light
+    const double each = l.power / total / double(n);
+    Rng rng(k, 0x6261636bull);  // "back"
+    for (uint64_t r = 0; r < n; ++r) {
+      Vec3 origin, d;
+      if (l.polygon >= 0) {
+        const Polygon& p = scene.polygons[size_t(l.polygon)];
+        const Vec3 normal = polygon_normal(p);
+        const double u = rng.uniform(), v = rng.uniform();  // named: argument order is unspecified
+        origin = sample_polygon(p, u, v) + normal * rays.offset();
+        d = cosine_around(normal, rng);
+      } else {
+        const PunctualLight& light = scene.lights[size_t(-2 - l.polygon)];
+        origin = light.position;
+        d = in_cone(light.type == PunctualLight::Type::spot ? light.direction : Vec3(0, 0, 1),
+                    light.type == PunctualLight::Type::spot ? light.outer_cone : kPi, rng);
+      }
+      ++out.rays;
+      const RayScene::Hit hit = rays.intersect(origin, d);
+      if (!hit.hit || dot(d, polygon_normal(scene.polygons[hit.polygon])) < 0) continue;  // gone, or a front face
+      out.share += each;
+      by_material[scene.polygons[hit.polygon].material] += each;
+    }
+  }
+  out.materials.assign(by_material.begin(), by_material.end());
+  std::stable_sort(out.materials.begin(), out.materials.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  return out;
+}
+
+std::string back_lit_warning(const Scene& scene, const BackLight& b, bool mgf) {
+  if (b.share <= kBackLitWarning) return "";
+  auto percent = [](double x) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.0f%%", 100 * x);
+    return std::string(text);
+  };
+  std::string which;
+  for (size_t k = 0; k < b.materials.size() && k < 4; ++k)
+    which += (k ? ", " : "") + scene.materials[b.materials[k].first].name + " " + percent(b.materials[k].second);
+  if (b.materials.size() > 4) which += ", ...";
+  return percent(b.share) + " of the light emitted first meets the back of one-sided polygons (" + which +
+         "), which absorb it: they face away from the lights. If they are meant two-sided, " +
+         (mgf ? "say so (MGF 'sides 2', or --mgf-sides 2 for materials that do not state it)" : "mark them doubleSided");
+}
+
+}  // namespace walkrad
