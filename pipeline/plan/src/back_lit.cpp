@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <string>
 
 #include "walkrad/core/sampling.h"
 
@@ -50,6 +51,16 @@ BackLight light_on_back_faces(const Scene& scene, const RayScene& rays) {
   for (const Light& l : lights) total += l.power;
   BackLight out;
   if (total <= 0) return out;
+  // By the file's material: the pieces contact splitting gave a "… (covered)" copy count as their own.
+  std::map<std::string, uint32_t> first;
+  std::vector<uint32_t> named(scene.materials.size());
+  for (uint32_t m = 0; m < scene.materials.size(); ++m) {
+    std::string name = scene.materials[m].name;
+    const std::string covered = " (covered)";
+    if (name.size() > covered.size() && name.compare(name.size() - covered.size(), covered.size(), covered) == 0)
+      name.resize(name.size() - covered.size());
+    named[m] = first.emplace(name, m).first->second;
+  }
   std::map<uint32_t, double> by_material;
   for (size_t k = 0; k < lights.size(); ++k) {
     const Light& l = lights[k];
@@ -74,7 +85,7 @@ BackLight light_on_back_faces(const Scene& scene, const RayScene& rays) {
       const RayScene::Hit hit = rays.intersect(origin, d);
       if (!hit.hit || dot(d, polygon_normal(scene.polygons[hit.polygon])) < 0) continue;  // gone, or a front face
       out.share += each;
-      by_material[scene.polygons[hit.polygon].material] += each;
+      by_material[named[scene.polygons[hit.polygon].material]] += each;
     }
   }
   out.materials.assign(by_material.begin(), by_material.end());

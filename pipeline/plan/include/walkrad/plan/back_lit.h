@@ -18,7 +18,9 @@ namespace walkrad {
 
 struct BackLight {
   double share = 0;  // of the emitted power (luminance), what first meets a back face
-  std::vector<std::pair<uint32_t, double>> materials;  // (material, share of the emitted power), largest first
+  // (material, share of the emitted power), largest first; a "… (covered)" copy (contact_split.h) counted
+  // as the material it copies
+  std::vector<std::pair<uint32_t, double>> materials;
   uint64_t rays = 0;
 };
 
