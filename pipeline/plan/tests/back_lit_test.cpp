@@ -119,8 +119,8 @@ class BackLitBake : public test::TempDirTest {
 
 // The cause of office1's endless refinement on a small scene. Read one-sided, the slab room loses 95%
 // of its light on the slabs' backs and says so; its refinement stays below the same room read
-// two-sided (--mgf-sides 2), which is lit as its author meant. (Before the white's floor, the
-// one-sided bake made 578 k links in 13 rounds, 12 times the time of the two-sided one's 260 k.)
+// two-sided (--mgf-sides 2), which is lit as its author meant. (Without the white's floor the one-sided
+// bake made 572 k links against the two-sided one's 54 k, and the test took 16.9 s instead of 1.9 s.)
 TEST_F(BackLitBake, ARoomThatTurnsItsBackOnTheLightWarnsAndRefinesNoMoreThanWhenItFacesIt) {
   const nlohmann::json one = bake_room(true, 1), two = bake_room(true, 2), room = bake_room(false, 1);
   const std::string warnings = one["warnings"].dump();
