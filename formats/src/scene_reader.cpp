@@ -11,9 +11,20 @@
 
 namespace walkrad {
 
-Scene read_scene(const std::string& path, const std::string& input_folder, int mgf_sides) {
+namespace {
+
+std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+bool is_mgf(const std::string& path) { return lower_extension(path) == ".mgf"; }
+
+Scene read_scene(const std::string& path, const std::string& input_folder, int mgf_sides) {
+  const std::string ext = lower_extension(path);
   if (ext == ".gltf" || ext == ".glb") return read_gltf(path, input_folder);
   if (ext == ".mgf") {
     MgfOptions options;

@@ -64,8 +64,7 @@ void refuse_lit_enclosures(const Scene& scene, const RayScene& rays, const std::
 
 // Most of the light lost on the backs of one-sided polygons: warned (stderr and report.json), not refused.
 void warn_back_lit(const Scene& scene, const RayScene& rays, const std::string& file, std::vector<std::string>& warnings) {
-  const std::string ext = std::filesystem::path(file).extension().string();
-  const std::string w = back_lit_warning(scene, light_on_back_faces(scene, rays), ext == ".mgf" || ext == ".MGF");
+  const std::string w = back_lit_warning(scene, light_on_back_faces(scene, rays));
   if (w.empty()) return;
   if (ranks().rank == 0) std::fprintf(stderr, "walkrad: warning: %s: %s\n", file.c_str(), w.c_str());
   warnings.push_back(w);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "walkrad/core/sampling.h"
+#include "walkrad/formats/scene_reader.h"
 
 namespace walkrad {
 
@@ -16,22 +17,6 @@ struct Light {
   double power = 0;
   int64_t polygon = -1;  // else the punctual light's index in scene.lights, as -2 - index
 };
-
-Vec3 cosine_around(const Vec3& n, Rng& rng) {
-  const Vec3 t = normalize(cross(std::fabs(n.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), n));
-  const Vec3 b = cross(n, t);
-  const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
-  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r * r));
-}
-
-// Uniform over the cap of half-angle `cone` about axis (the sphere for cone = π).
-Vec3 in_cone(const Vec3& axis, double cone, Rng& rng) {
-  const Vec3 t = normalize(cross(std::fabs(axis.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), axis));
-  const Vec3 b = cross(axis, t);
-  const double z = 1 - rng.uniform() * (1 - std::cos(cone)), phi = 2 * kPi * rng.uniform();
-  const double s = std::sqrt(std::max(0.0, 1 - z * z));
-  return t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + axis * z;
-}
 
 }  // namespace
 
@@ -74,11 +59,11 @@ BackLight light_on_back_faces(const Scene& scene, const RayScene& rays) {
         const Vec3 normal = polygon_normal(p);
         const double u = rng.uniform(), v = rng.uniform();  // named: argument order is unspecified
         origin = sample_polygon(p, u, v) + normal * rays.offset();
-        d = cosine_around(normal, rng);
+        d = cosine_direction(normal, rng);
       } else {
         const PunctualLight& light = scene.lights[size_t(-2 - l.polygon)];
         origin = light.position;
-        d = in_cone(light.type == PunctualLight::Type::spot ? light.direction : Vec3(0, 0, 1),
+        d = cone_direction(light.type == PunctualLight::Type::spot ? light.direction : Vec3(0, 0, 1),
                     light.type == PunctualLight::Type::spot ? light.outer_cone : kPi, rng);
       }
       ++out.rays;
@@ -93,7 +78,7 @@ BackLight light_on_back_faces(const Scene& scene, const RayScene& rays) {
   return out;
 }
 
-std::string back_lit_warning(const Scene& scene, const BackLight& b, bool mgf) {
+std::string back_lit_warning(const Scene& scene, const BackLight& b) {
   if (b.share <= kBackLitWarning) return "";
   auto percent = [](double x) {
     char text[16];
@@ -106,7 +91,7 @@ std::string back_lit_warning(const Scene& scene, const BackLight& b, bool mgf) {
   if (b.materials.size() > 4) which += ", ...";
   return percent(b.share) + " of the light emitted first meets the back of one-sided polygons (" + which +
          "), which absorb it: they face away from the lights. If they are meant two-sided, " +
-         (mgf ? "say so (MGF 'sides 2', or --mgf-sides 2 for materials that do not state it)" : "mark them doubleSided");
+         (is_mgf(scene.source) ? "say so (MGF 'sides 2', or --mgf-sides 2 for materials that do not state it)" : "mark them doubleSided");
 }
 
 }  // namespace walkrad

@@ -182,15 +182,11 @@ bool is_closed(const Scene& scene, const RayScene& rays, uint64_t& rays_cast, ui
     const Polygon& p = scene.polygons[i];
     const Vec3 normal = pressed.normal(i);
     const double share = polygon_area(p) / double(per);  // of the area, each ray from p
-    // A frame around the normal for cosine-weighted directions.
-    const Vec3 t = normalize(cross(std::fabs(normal.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), normal));
-    const Vec3 b = cross(normal, t);
     Rng rng(i, 0x636c6f73ull);  // "clos"
     for (size_t k = 0; k < per; ++k) {
       const double v = rng.uniform(), u = rng.uniform();  // named: argument order is unspecified (GCC's kept)
       const Vec3 origin = sample_polygon(p, u, v) + normal * rays.offset();
-      const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
-      const Vec3 d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + normal * std::sqrt(std::max(0.0, 1 - r * r));
+      const Vec3 d = cosine_direction(normal, rng);
       ++rays_cast;
       const RayScene::Hit hit = rays.intersect(origin, d);
       if (hit.hit && dot(d, pressed.normal(hit.polygon)) <= 0) continue;  // a front face: the light stays

@@ -6,26 +6,12 @@
 #include <set>
 
 #include "walkrad/core/sampling.h"
+#include "walkrad/formats/scene_reader.h"
 #include "walkrad/scene/transmission_twins.h"
 
 namespace walkrad {
 
 namespace {
-
-// Cosine-distributed about n (Malley's method), from (r², φ) = (u1, 2π u2).
-Vec3 cosine_direction(const Vec3& n, Rng& rng) {
-  const Vec3 t = normalize(cross(std::fabs(n.x) > 0.5 ? Vec3(0, 1, 0) : Vec3(1, 0, 0), n));
-  const Vec3 b = cross(n, t);
-  const double r = std::sqrt(rng.uniform()), phi = 2 * kPi * rng.uniform();
-  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r * r));
-}
-
-// Uniform over the sphere (Archimedes: z uniform in [−1, 1]).
-Vec3 sphere_direction(Rng& rng) {
-  const double z = 1 - 2 * rng.uniform(), phi = 2 * kPi * rng.uniform();
-  const double s = std::sqrt(std::max(0.0, 1 - z * z));
-  return Vec3(s * std::cos(phi), s * std::sin(phi), z);
-}
 
 double kept(const Material& m, int c, bool transmits) { return m.reflectance[c] + (transmits ? m.transmittance[c] : 0.0); }
 
@@ -103,7 +89,7 @@ std::vector<LosslessEnclosure> enclosures_in(const Scene& scene, const RayScene&
     Rng rng(l, 0x6c697465ull);  // "lite"
     int64_t inside = -2;  // the enclosure every ray met so far; -1: none
     for (int k = 0; k < kEnclosureRays && inside != -1; ++k) {
-      const int64_t hit = front_hit(scene, rays, scene.lights[l].position, sphere_direction(rng));
+      const int64_t hit = front_hit(scene, rays, scene.lights[l].position, cone_direction(Vec3(0, 0, 1), kPi, rng));
       const int64_t g = hit < 0 ? -1 : group[size_t(hit)];
       inside = inside == -2 || inside == g ? g : -1;
     }
@@ -133,8 +119,7 @@ std::string describe_polygons(const Scene& scene, const std::vector<uint32_t>& p
     materials.insert(scene.polygons[i].material);
     sources.insert(scene.polygons[i].source);
   }
-  const std::string& file = scene.source;
-  const bool mgf = file.size() >= 4 && file.compare(file.size() - 4, 4, ".mgf") == 0;
+  const bool mgf = is_mgf(scene.source);
   std::string text = std::to_string(polygons.size()) + (polygons.size() == 1 ? " polygon (material" : " polygons (material");
   text += materials.size() == 1 ? " " : "s ";
   size_t k = 0;

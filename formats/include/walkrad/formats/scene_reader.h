@@ -14,4 +14,8 @@ namespace walkrad {
 // mgf_sides: the sides of an MGF material that does not state them (MgfOptions::default_sides).
 Scene read_scene(const std::string& path, const std::string& input_folder = {}, int mgf_sides = 1);
 
+// Whether read_scene reads the path as MGF (its extension, in any case): messages name MGF lines and
+// options, glTF meshes.
+bool is_mgf(const std::string& path);
+
 }  // namespace walkrad

@@ -29,4 +29,12 @@ class Rng {
 // warp), bilinear for a quad (uniform by area for a parallelogram).
 Vec3 sample_polygon(const Polygon& p, double u, double v);
 
+// A direction about unit n with pdf cos θ / π (Malley's method: a point of the unit disc, lifted), from
+// two draws of rng (r² then φ), in a frame made from n and the x or y axis.
+Vec3 cosine_direction(const Vec3& n, Rng& rng);
+
+// Uniform over the cap of half-angle `cone` about unit axis (the whole sphere for cone = π), from two
+// draws of rng (the height then φ).
+Vec3 cone_direction(const Vec3& axis, double cone, Rng& rng);
+
 }  // namespace walkrad

@@ -32,8 +32,8 @@ BackLight light_on_back_faces(const Scene& scene, const RayScene& rays);
 
 // Above this share the bake warns (back_lit_warning); a closed room of two-sided walls loses none.
 inline constexpr double kBackLitWarning = 0.5;
-// "62% of the light emitted first meets the back of one-sided polygons (floor 31%, ...)": empty below
-// kBackLitWarning.
-std::string back_lit_warning(const Scene& scene, const BackLight& b, bool mgf);
+// "62% of the light emitted first meets the back of one-sided polygons (floor 31%, ...)", with the MGF or
+// glTF way to say two-sided as scene.source is read: empty below kBackLitWarning.
+std::string back_lit_warning(const Scene& scene, const BackLight& b);
 
 }  // namespace walkrad
