@@ -1,5 +1,7 @@
 #include "walkrad/bake/bake_caps.h"
 
+#include <algorithm>
+
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -56,6 +58,12 @@ void CapWatch::check_predicted(const std::string& where, uint64_t predicted_mb, 
                        ": stopped before it, no output written; ask for a coarser bake (a larger --error or a lower --quality, or a "
                        "larger --element-size) or allow more memory",
                    kExitLimitReached);
+}
+
+double CapWatch::seconds_left() const {
+  if (caps_.max_seconds <= 0) return -1.0;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return std::max(0.0, caps_.max_seconds - seconds);
 }
 
 void CapWatch::check(const std::string& where) const {

@@ -34,6 +34,7 @@ class Phases {
   void check_predicted(const std::string& where, uint64_t predicted_mb, const std::string& what) const {
     caps_.check_predicted(where, predicted_mb, what);
   }
+  const CapWatch& caps() const { return caps_; }
   void start(const std::string& name) {
     caps_.check("before " + name);
     finish();

@@ -109,7 +109,7 @@ class RoundReporter {
  public:
   RoundReporter(const HierarchicalStats& stats, Phases& phases, bool progress)
       : stats_(stats), phases_(phases), progress_(progress), t0_(Clock::now()), round_start_(t0_),
-        previous_rss_(resident_memory_mb()) {}
+        start_rss_(resident_memory_mb()), previous_rss_(start_rss_) {}
 
   void operator()(const IterationStats& it) {
     const std::string round = std::to_string(stats_.iterations.size());
@@ -135,13 +135,21 @@ class RoundReporter {
     previous_new_ = it.new_links;
     round_start_ = now;
     if (!progress_) return;
-    char eta[48] = "remaining unknown", estimate[48] = "";
-    if (left >= 0) std::snprintf(eta, sizeof eta, "about %.0f s left", left);
+    char eta[64] = "remaining unknown", estimate[48] = "";
+    // While the wave of new links grows (left unknown) or where it says more: the cap that stops the
+    // bake if refinement does not end first, a number from the first round on.
+    const double solved = std::chrono::duration<double>(now - t0_).count();
+    const double to_memory = seconds_to_memory_cap(phases_.caps().memory_cap_mb(), start_rss_, rss, solved);
+    const double to_time = phases_.caps().seconds_left();
+    const bool time_first = to_time >= 0 && (to_memory < 0 || to_time <= to_memory);
+    const double bound = time_first ? to_time : to_memory;
+    if (left >= 0 && (bound < 0 || left <= bound)) std::snprintf(eta, sizeof eta, "about %.0f s left", left);
+    else if (bound >= 0) std::snprintf(eta, sizeof eta, "at most ~%.0f s left (%s)", bound, time_first ? "--max-seconds" : "the memory cap");
     if (it.estimated_error >= 0) std::snprintf(estimate, sizeof estimate, ", estimated error %.2f%%", 100 * it.estimated_error);
     std::fprintf(stderr, "walkrad: solve round %zu: %llu links (+%llu), %llu elements, change %.2e%s, %.1f s, %s\n",
                  stats_.iterations.size(), static_cast<unsigned long long>(it.links),
                  static_cast<unsigned long long>(it.new_links), static_cast<unsigned long long>(it.elements), it.change,
-                 estimate, std::chrono::duration<double>(now - t0_).count(), eta);
+                 estimate, solved, eta);
     if (stats_.stalled_round + 1 == int64_t(stats_.iterations.size()) && stats_.iterations.size() >= 3) {
       const IterationStats& before = stats_.iterations[stats_.iterations.size() - 3];
       std::fprintf(stderr,
@@ -161,7 +169,7 @@ class RoundReporter {
   Phases& phases_;
   bool progress_;
   Clock::time_point t0_, round_start_;
-  uint64_t previous_new_ = 0, previous_rss_;
+  uint64_t start_rss_, previous_new_ = 0, previous_rss_;
   std::vector<double> round_seconds_;
 };
 

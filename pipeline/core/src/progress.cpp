@@ -30,4 +30,10 @@ double refinement_seconds_left(uint64_t previous_new_links, uint64_t last_new_li
   return last_round_seconds * r / (1 - r);  // (seconds per link) × (links left)
 }
 
+double seconds_to_memory_cap(uint64_t cap_mb, uint64_t start_mb, uint64_t now_mb, double seconds) {
+  if (cap_mb == 0 || now_mb <= start_mb || seconds <= 0) return -1.0;
+  if (now_mb >= cap_mb) return 0.0;
+  return double(cap_mb - now_mb) * seconds / double(now_mb - start_mb);
+}
+
 }  // namespace walkrad

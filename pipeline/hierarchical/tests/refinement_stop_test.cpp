@@ -25,6 +25,14 @@ TEST(RefinementProgress, EstimatesTimeLeftFromTheShrinkingWave) {
   EXPECT_EQ(refinement_seconds_left(100, 0, 2.0), 0.0);   // nothing added: done
 }
 
+// While the wave still grows, the bound: the memory cap, reached at the solve's rate of growth so far.
+TEST(RefinementProgress, BoundsTimeLeftByTheMemoryCapWhileTheWaveGrows) {
+  EXPECT_NEAR(seconds_to_memory_cap(14000, 400, 500, 10.0), 1350.0, 1e-9);  // 13,500 MiB at 10 MiB/s
+  EXPECT_LT(seconds_to_memory_cap(0, 400, 500, 10.0), 0.0);                 // no cap: unknown
+  EXPECT_LT(seconds_to_memory_cap(14000, 500, 500, 10.0), 0.0);             // no growth yet: unknown
+  EXPECT_EQ(seconds_to_memory_cap(14000, 400, 14500, 10.0), 0.0);           // past it: the next check stops the bake
+}
+
 // Diminishing returns end refinement: the rounds (links, estimated error) of two bakes as their
 // progress printed them. RenderPark's office1 doubled its links from round 5 to 7 for 14% less error;
 // the Cornell box's last rounds add a few per cent of links each, whatever the error does.

@@ -47,6 +47,7 @@ class CapWatch {
   void check_predicted(const std::string& where, uint64_t predicted_mb, const std::string& what) const;
 
   uint64_t memory_cap_mb() const { return memory_cap_mb_; }  // resolved; 0: none
+  double seconds_left() const;  // before --max-seconds stops the bake; negative: no time cap
 
  private:
   std::string memory_cap_text() const;  // the cap and where it comes from, for messages

@@ -32,4 +32,10 @@ class Progress {
 // last · r / (1 − r) links, at the last round's cost per link. Negative while still growing (unknown).
 double refinement_seconds_left(uint64_t previous_new_links, uint64_t last_new_links, double last_round_seconds);
 
+// An upper bound on the solve's time left while the wave of new links still grows (the estimate above
+// unknown): a bake that does not end first stops at its memory cap, which memory growing at the solve's
+// average rate so far, (now − start) / seconds, reaches in (cap − now) / rate. Negative where unknown
+// (no cap, or no growth yet).
+double seconds_to_memory_cap(uint64_t cap_mb, uint64_t start_mb, uint64_t now_mb, double seconds);
+
 }  // namespace walkrad
