@@ -8,9 +8,11 @@
 #                    OPTIONS --quality medium                                      # optional
 #                    ALL)                                                          # optional
 #
-# The bake re-runs only when the scene, the walkthrough, the options or the walkrad executable change
-# (the options are written to a stamp file that is rewritten only when they change, so this holds with
-# Makefiles as well as Ninja). walkrad writes the bake folder atomically: a failed or interrupted bake
+# The bake re-runs only when the scene, a file it refers to (buffers, images, MGF includes, IES
+# profiles: the bake lists what it read in a depfile, `walkrad bake --depfile`), the walkthrough, the
+# options or the walkrad executable change (the options are written to a stamp file that is rewritten
+# only when they change, so this holds with Makefiles as well as Ninja; the depfile needs Ninja, or
+# Makefiles with CMake 3.20 or later: other generators re-bake on the scene and DEPENDS only). walkrad writes the bake folder atomically: a failed or interrupted bake
 # leaves the previous one in place. The executable is the `walkrad` target when walkrad is part of the
 # build (add_subdirectory), else WALKRAD_EXECUTABLE (a cache variable, found on PATH by default).
 function(walkrad_add_bake)
@@ -42,10 +44,19 @@ function(walkrad_add_bake)
   string(REPLACE ";" " " settings_text "${WB_SCENE}\n${WB_VIEWS}\n${WB_OPTIONS}")
   file(CONFIGURE OUTPUT ${stamp} CONTENT "${settings_text}\n")
 
+  # What the scene refers to is known once it is read: the bake writes it as a depfile.
+  set(depfile_args)
+  if(CMAKE_GENERATOR MATCHES "Ninja" OR (CMAKE_GENERATOR MATCHES "Makefiles" AND NOT CMAKE_VERSION VERSION_LESS 3.20))
+    set(depfile ${CMAKE_CURRENT_BINARY_DIR}/${WB_TARGET}.walkrad.d)
+    list(APPEND command --depfile ${depfile})
+    set(depfile_args DEPFILE ${depfile})
+  endif()
+
   add_custom_command(
     OUTPUT ${WB_OUTPUT}/manifest.json
     COMMAND ${command}
     DEPENDS ${inputs} ${stamp} ${tool_dep} ${WB_DEPENDS}
+    ${depfile_args}
     COMMENT "walkrad: baking ${WB_SCENE}"
     VERBATIM)
   if(WB_ALL)

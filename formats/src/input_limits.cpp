@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "walkrad/formats/dependencies.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad::input_limits {
@@ -19,6 +20,7 @@ uint64_t check_regular_file(const std::string& path, uint64_t max_bytes, const s
   if (size > max_bytes)
     throw InputError(path, "", what + " of " + std::to_string(size) + " bytes exceeds the limit of " +
                                std::to_string(max_bytes) + " bytes", kExitLimitReached);
+  ReadLog::note(path);  // what the bake depends on (its --depfile)
   return size;
 }
 

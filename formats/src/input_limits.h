@@ -18,7 +18,8 @@ constexpr uint64_t kMaxBinaryBytes = uint64_t(2) << 30;   // .glb, buffers, MGF 
 constexpr int kMaxJsonDepth = 64;                          // glTF needs 8 or so, walkrad's own files 4
 
 // Throws InputError (kExitBadInput) unless `path` is a regular file, and (kExitLimitReached) when it
-// is larger than max_bytes. Returns its size.
+// is larger than max_bytes. Returns its size. Every reader opens its files after this check, which
+// notes each in the ReadLogs alive on the thread (dependencies.h: a bake's depfile).
 uint64_t check_regular_file(const std::string& path, uint64_t max_bytes, const std::string& what);
 
 // The whole file, after check_regular_file.

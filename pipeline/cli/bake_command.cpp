@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "walkrad/bake/web_viewer.h"
 #include "walkrad/core/build_identity.h"
+#include "walkrad/formats/dependencies.h"
 #include "walkrad/formats/error.h"
 
 namespace walkrad::command {
@@ -85,6 +86,10 @@ void add_bake(CLI::App& app, BakeCommand& c) {
                      "hierarchical: start from the --checkpoint folder's last complete round (from the start when it has none)")
       ->needs(checkpoint_opt);
   c.app->add_flag("-q,--quiet", c.quiet, "no progress lines");
+  c.app->add_option("--depfile", c.depfile,
+                    "write a Make-syntax dependency file: the bake's manifest.json depends on every file the bake read "
+                    "(the scene, its buffers, images, MGF includes and IES profiles, the walkthrough), for a build "
+                    "system's DEPFILE (cmake/WalkradBake.cmake)");
 
 }
 
@@ -121,12 +126,16 @@ int run_bake(BakeCommand& c, const Ranks& rk, bool& stopped) {
     with_web = false;
   }
   if (with_web) check_web_viewer(default_web_viewer_dir());  // before the long work, not after it
+  ReadLog read;  // rank 0 reads every input (bake_inputs.h)
   const BakeSummary s = bake(bs);
   if (rk.rank != 0) {
     std::filesystem::remove_all(bs.output);
     return kExitOk;
   }
   if (with_web) install_web_viewer(s.output, default_web_viewer_dir());
+  // After the bake folder is in place: a build that stops before has no depfile saying it is up to date.
+  if (!c.depfile.empty())
+    write_depfile(c.depfile, (std::filesystem::absolute(s.output) / "manifest.json").lexically_normal().string(), read.files());
   std::printf("walkrad: baked %s: %zu elements, %zu triangles, %zu viewpoints, exposure %.4g, %.2f s%s\n",
               s.output.c_str(), s.elements, s.triangles, s.viewpoints, s.exposure, s.seconds,
               rk.size > 1 ? (", " + std::to_string(rk.size) + " ranks").c_str() : "");

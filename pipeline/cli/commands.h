@@ -30,6 +30,7 @@ struct BakeCommand {
               form_factors = form_factors_name(FormFactors::contour), quality;
   std::vector<std::string> effect_overrides;
   bool quiet = false, no_compression = false, with_web = false;
+  std::string depfile;  // --depfile: written by rank 0 once the bake folder is in place
 };
 void add_bake(CLI::App& app, BakeCommand& c);
 // Over several ranks (mpirun), rank 0 reports and writes the bake; the others bake into a scratch folder
