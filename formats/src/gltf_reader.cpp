@@ -317,7 +317,8 @@ struct Reader {
     scene.cameras.push_back(v);
   }
 
-  // KHR_lights_punctual: a node's light, placed at the node's origin, shining along its −Z.
+  // KHR_lights_punctual: a node's light, placed at the node's origin, shining along its −Z (a
+  // directional light: from infinitely far, its angular size in extras "walkrad:angular_diameter").
   void add_light(int node, const Mat4& world) {
     const tinygltf::Node& n = model.nodes[node];
     const auto ext = n.extensions.find("KHR_lights_punctual");
@@ -339,8 +340,18 @@ struct Reader {
       l.outer_cone = gl.spot.outerConeAngle;
       if (!(l.inner_cone >= 0 && l.inner_cone < l.outer_cone && l.outer_cone <= kPi / 2))
         throw InputError(file, lplace, "spot cones must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    } else if (gl.type == "directional") {
+      l.type = PunctualLight::Type::directional;
+      if (gl.extras.IsObject() && gl.extras.Has("walkrad:angular_diameter")) {
+        const tinygltf::Value& a = gl.extras.Get("walkrad:angular_diameter");
+        l.angular_diameter = a.IsNumber() ? a.GetNumberAsDouble() : -1.0;
+        if (!(l.angular_diameter >= 0 && l.angular_diameter <= kMaxAngularDiameter))
+          throw InputError(file, lplace + ".extras", "walkrad:angular_diameter must be a number of radians from 0 to " +
+                                                         std::to_string(kMaxAngularDiameter));
+      }
     } else {
-      throw InputError(file, lplace, "light type '" + gl.type + "' is not supported (point and spot are)", kExitMissingFeature);
+      throw InputError(file, lplace, "light type '" + gl.type + "' is not supported (point, spot and directional are)",
+                       kExitMissingFeature);
     }
     const auto& c = gl.color;
     const Vec3 colour(c.size() > 0 ? c[0] : 1.0, c.size() > 1 ? c[1] : 1.0, c.size() > 2 ? c[2] : 1.0);

@@ -223,7 +223,14 @@ void add_punctual_lights(const Scene& scene, tinygltf::Model& model, tinygltf::S
     if (l.type == PunctualLight::Type::ies) continue;
     tinygltf::Light light;
     light.name = l.name;
-    light.type = l.type == PunctualLight::Type::spot ? "spot" : "point";
+    light.type = l.type == PunctualLight::Type::spot          ? "spot"
+                 : l.type == PunctualLight::Type::directional ? "directional"
+                                                              : "point";
+    if (l.type == PunctualLight::Type::directional && l.angular_diameter != kSunDiameter) {
+      tinygltf::Value::Object extras;
+      extras["walkrad:angular_diameter"] = tinygltf::Value(l.angular_diameter);
+      light.extras = tinygltf::Value(extras);
+    }
     const double peak = max_component(l.intensity);
     light.intensity = peak;
     light.color = peak > 0 ? std::vector<double>{l.intensity.x / peak, l.intensity.y / peak, l.intensity.z / peak}

@@ -228,6 +228,35 @@ TEST_F(BadInput, IesLightsInGltf) {
   }
 }
 
+// A directional light (the sun): read with its angular size from the light's extras; a size that is not
+// a number from 0 to kMaxAngularDiameter, or a light type walkrad does not know, is refused naming the light.
+TEST_F(BadInput, DirectionalLightsInGltf) {
+  nlohmann::json g = quad_gltf();
+  g["extensionsUsed"] = {"KHR_lights_punctual"};
+  g["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "directional"}, {"intensity", 80}, {"color", {1, 0.5, 0.25}}, {"extras", {{"walkrad:angular_diameter", 0.02}}}}};
+  g["nodes"].push_back({{"name", "sun"}, {"rotation", {-0.5, 0, 0, 0.8660254037844386}},  // −Z turned 60° about x
+                        {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  g["scenes"][0]["nodes"].push_back(g["nodes"].size() - 1);
+  const Scene s = read_gltf(write("sun.gltf", g));
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, PunctualLight::Type::directional);
+  EXPECT_EQ(s.lights[0].intensity, Vec3(80, 40, 20));
+  EXPECT_EQ(s.lights[0].angular_diameter, 0.02);
+  EXPECT_NEAR(s.lights[0].direction.y, -std::sin(kPi / 3), 1e-9);
+  EXPECT_NEAR(s.lights[0].direction.z, -std::cos(kPi / 3), 1e-9);
+  for (const nlohmann::json& size : {nlohmann::json(-0.1), nlohmann::json(0.6), nlohmann::json("wide")}) {
+    nlohmann::json bad = g;
+    bad["extensions"]["KHR_lights_punctual"]["lights"][0]["extras"]["walkrad:angular_diameter"] = size;
+    const std::string b = write("sun-size.gltf", bad);
+    expect_refused([&] { read_gltf(b); }, b, kExitBadInput, {"lights[0].extras", "walkrad:angular_diameter"});
+  }
+  nlohmann::json area = g;
+  area["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "area";
+  const std::string a = write("area.gltf", area);
+  expect_refused([&] { read_gltf(a); }, a, kExitMissingFeature, {"lights[0]", "light type 'area' is not supported"});
+}
+
 // Devices are refused outside the input folder (input_folder_test.cpp) and, where the folder holds them
 // ("/" here), as not regular files: a read from one could block or never end.
 TEST_F(BadInput, DevicesAreNotFiles) {

@@ -158,11 +158,24 @@ void ReferenceTracer::scatter(const Material& m, Vec3& n, Vec3& beta, Rng& rng) 
 }
 
 // The irradiance the punctual lights give x (normal n): I cos θ / r² each, a shadow ray each. No sampling:
-// a point light is a delta in direction, which no cosine-weighted ray can meet.
-Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, uint64_t& rays) const {
+// a point light is a delta in direction, which no cosine-weighted ray can meet. A directional light's
+// (KHR_lights_punctual: lux on a surface facing it, read as W/m²) arrives from a uniform disc of its
+// angular diameter: one direction ω drawn uniformly over that cap, E⊥ (ω·n) if its ray leaves the scene
+// (the disc's radiance E⊥ / Ω times Ω: the estimate's mean is E⊥ over the disc's mean of ω·n).
+Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const {
   Vec3 E;
   const double off = rays_.offset();
   for (const PunctualLight& l : scene_.lights) {
+    if (l.type == PunctualLight::Type::directional) {
+      const double u1 = rng.uniform(), u2 = rng.uniform();
+      const Vec3 w = cap_direction(-l.direction, l.angular_diameter / 2, u1, u2);
+      const double c = dot(n, w);
+      if (c <= 0) continue;
+      ++rays;
+      if (rays_.occluded(x + n * off, x + w * (2e6 * off))) continue;  // 2·10⁶ offsets: twice the diagonal
+      E += l.intensity * c;
+      continue;
+    }
     const Vec3 d = l.position - x;
     const double r2 = dot(d, d);
     if (!(r2 > 0)) continue;
@@ -199,7 +212,7 @@ RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int sampl
     scatter(m0, n, beta, rng);
     for (int bounce = 0; bounce < kMaxBounces && max_component(beta) > 0; ++bounce) {
       selection(x, n, choice);
-      value += mul(beta, direct(x, n, choice, rng, rays) + punctual(x, n, rays));
+      value += mul(beta, direct(x, n, choice, rng, rays) + punctual(x, n, rng, rays));
       const double u1 = rng.uniform(), u2 = rng.uniform();
       const Vec3 dir = cosine_direction(n, u1, u2);
       ++rays;

@@ -187,6 +187,36 @@ TEST(ReferencePunctual, PointAndSpotLightsOverAFloor) {
   }
 }
 
+// The sun (a directional light, lux read as W/m²) over the same lone floor at 30° from the zenith:
+// B = ρ E⊥ times the disc's mean cosine (within 10⁻⁵ of cos 30° for the 0.53° disc); under a roof
+// that covers the point, nothing; at a point whose view of the sun the roof's edge cuts in half, half.
+TEST(ReferencePunctual, TheSunOverAFloorAndAtARoofsEdge) {
+  Scene s;
+  s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {}});
+  s.materials.push_back({"roof", {0, 0, 0}, {}});
+  s.polygons.push_back(test::quad({-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0));
+  s.polygons.push_back(test::quad({5, 3, -5}, {15, 3, -5}, {15, 3, 5}, {5, 3, 5}, 1));  // y = 3, x from 5 to 15
+  const double theta = 30 * kPi / 180;
+  PunctualLight sun;
+  sun.type = PunctualLight::Type::directional;
+  sun.direction = {-std::sin(theta), -std::cos(theta), 0};  // from +x, above
+  sun.intensity = {100, 100, 100};
+  s.lights = {sun};
+  const RayScene rays(s);
+  const ReferenceTracer tracer(s, rays);
+  ReferenceSettings settings;
+  settings.samples = 4096;
+  uint64_t cast = 0;
+  // The roof's edge x = 5 seen from the floor towards the sun: x = 5 − 3 tan 30°.
+  const double edge = 5 - 3 * std::tan(theta);
+  const std::vector<SurfacePoint> points = {{0, {-5, 0, 0}}, {0, {10, 0, 0}}, {0, {edge, 0, 0}}};
+  const std::vector<RadiosityEstimate> est = tracer.estimate(points, settings, cast);
+  const double lit = 0.5 * 100 * std::cos(theta);
+  EXPECT_NEAR(est[0].B.x, lit, 1e-4 * lit);
+  EXPECT_EQ(est[1].B.x, 0.0);
+  EXPECT_NEAR(est[2].B.x, lit / 2, 0.05 * lit);  // 4,096 draws: σ = 0.8% of lit
+}
+
 TEST(ReferenceTracer, SameEstimatesWithOneAndTwoThreads) {
   const Scene box = test::closed_box(1.0, {0.7, 0.6, 0.5}, {1, 1, 1});
   const RayScene rays(box);

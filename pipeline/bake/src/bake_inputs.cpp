@@ -18,7 +18,7 @@ namespace {
 static_assert(std::is_trivially_copyable_v<Polygon> && std::is_trivially_copyable_v<Vec3>);
 static_assert(sizeof(Material) == sizeof(std::string) + 3 * sizeof(Vec3) + 8, "Material changed: see bake_inputs.cpp");
 static_assert(sizeof(Viewpoint) == sizeof(std::string) + 3 * sizeof(Vec3) + 16, "Viewpoint changed: see bake_inputs.cpp");
-static_assert(sizeof(PunctualLight) == sizeof(std::string) + 8 + 4 * sizeof(Vec3) + 24 + sizeof(std::shared_ptr<int>),
+static_assert(sizeof(PunctualLight) == sizeof(std::string) + 8 + 4 * sizeof(Vec3) + 32 + sizeof(std::shared_ptr<int>),
               "PunctualLight changed: see bake_inputs.cpp");
 static_assert(sizeof(IesProfile) == 3 * sizeof(std::string) + 5 * sizeof(std::vector<double>) + 8 + 8 + 8 + 8 + 8,
               "IesProfile changed: see bake_inputs.cpp");
@@ -65,7 +65,7 @@ std::vector<uint8_t> scene_to_bytes(const Scene& scene, const std::vector<Viewpo
   for (const PunctualLight& l : scene.lights) {
     out.put_string(l.name);
     out.put(l.type), out.put(l.position), out.put(l.direction), out.put(l.up), out.put(l.intensity);
-    out.put(l.range), out.put(l.inner_cone), out.put(l.outer_cone);
+    out.put(l.range), out.put(l.inner_cone), out.put(l.outer_cone), out.put(l.angular_diameter);
     out.put(bool(l.profile));
     if (!l.profile) continue;
     const IesProfile& p = *l.profile;
@@ -102,7 +102,7 @@ void scene_from_bytes(const std::vector<uint8_t>& bytes, Scene& scene, std::vect
   for (PunctualLight& l : scene.lights) {
     l.name = in.get_string();
     get(l.type), get(l.position), get(l.direction), get(l.up), get(l.intensity);
-    get(l.range), get(l.inner_cone), get(l.outer_cone);
+    get(l.range), get(l.inner_cone), get(l.outer_cone), get(l.angular_diameter);
     if (!in.get<bool>()) continue;
     auto p = std::make_shared<IesProfile>();
     p->source = in.get_string(), p->version = in.get_string(), p->text = in.get_string();

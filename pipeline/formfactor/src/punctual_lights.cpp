@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "walkrad/core/sampling.h"
 
 namespace walkrad {
@@ -23,6 +25,7 @@ double range_window(const PunctualLight& light, double r) {
 }
 
 Vec3 punctual_power(const PunctualLight& light) {
+  if (light.type == PunctualLight::Type::directional) return {};  // directional_power
   if (light.type == PunctualLight::Type::point) return light.intensity * (4 * kPi);
   if (light.type == PunctualLight::Type::ies) return light.profile ? light.intensity * light.profile->flux() : Vec3{};
   // ∫ spot dΩ = 2π ∫ spot d(cos θ) over cos θ ∈ [cos outer, 1]; the falloff depends on cos θ alone
@@ -39,10 +42,48 @@ Vec3 punctual_power(const PunctualLight& light) {
   return light.intensity * (2 * kPi * (1 - c0) * sum / kSteps);
 }
 
+Vec3 directional_power(const PunctualLight& light, const std::vector<Polygon>& polygons) {
+  double projected = 0;
+  for (const Polygon& p : polygons) projected += polygon_area(p) * std::max(0.0, -dot(polygon_normal(p), light.direction));
+  return light.intensity * projected;
+}
+
+namespace {
+
+// The share of the sun's disc seen from `from`: kSunRays rays towards a sunflower pattern of the disc
+// (equal solid angles, the golden angle between neighbours), each to twice the scene's diagonal (2·10⁶
+// ray offsets, RayScene::offset): past the scene from any point in it.
+double sun_visibility(const PunctualLight& l, const Vec3& from, const RayScene& rays, uint64_t& rays_cast) {
+  const Vec3 w = -l.direction;
+  const double far = 2e6 * rays.offset();
+  if (l.angular_diameter <= 0) {
+    ++rays_cast;
+    return rays.occluded(from, from + w * far) ? 0.0 : 1.0;
+  }
+  constexpr double kGolden = 0.38196601125010515;  // (3 − √5) / 2 of a turn
+  int open = 0;
+  for (int k = 0; k < kSunRays; ++k) {
+    const double v = k * kGolden;
+    const Vec3 d = cap_direction(w, l.angular_diameter / 2, (k + 0.5) / kSunRays, v - std::floor(v));
+    open += rays.occluded(from, from + d * far) ? 0 : 1;
+  }
+  rays_cast += kSunRays;
+  return double(open) / kSunRays;
+}
+
+}  // namespace
+
 Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
                       uint64_t& rays_cast, const Vec3* origin) {
   Vec3 e;
   for (const PunctualLight& l : lights) {
+    if (l.type == PunctualLight::Type::directional) {
+      const double cosine = -dot(normal, l.direction);
+      if (cosine <= 0) continue;
+      const double seen = rays ? sun_visibility(l, origin ? *origin : x + normal * rays->offset(), *rays, rays_cast) : 1.0;
+      e += l.intensity * (cosine * seen);
+      continue;
+    }
     const Vec3 d = l.position - x;
     const double r2 = dot(d, d);
     if (!(r2 > 0)) continue;
@@ -59,6 +100,34 @@ Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<Punct
     e += l.intensity * (cosine * falloff / r2);
   }
   return e;
+}
+
+std::vector<LightSpot> light_spots(const std::vector<PunctualLight>& lights, const Scene& scene, const RayScene& rays,
+                                   int grid) {
+  std::vector<LightSpot> out;
+  const Bounds b = scene.bounds();
+  const Vec3 centre = (b.lo + b.hi) * 0.5;
+  const double radius = 0.5 * length(b.diagonal());
+  if (!(radius > 0) || grid < 1) return out;
+  for (const PunctualLight& l : lights) {
+    if (l.type != PunctualLight::Type::directional || max_component(l.intensity) <= 0) continue;
+    Vec3 t, s;
+    frame(l.direction, t, s);
+    const Vec3 start = centre - l.direction * (2 * radius);
+    std::vector<std::vector<LightSpot>> rows(static_cast<size_t>(grid));
+    tbb::parallel_for(0, grid, [&](int i) {
+      const double v = radius * (2 * (i + 0.5) / grid - 1);
+      for (int j = 0; j < grid; ++j) {
+        const double u = radius * (2 * (j + 0.5) / grid - 1);
+        if (u * u + v * v > radius * radius) continue;
+        const RayScene::Hit hit = rays.intersect(start + t * u + s * v, l.direction);
+        if (hit.hit && dot(polygon_normal(scene.polygons[hit.polygon]), l.direction) < 0)
+          rows[size_t(i)].push_back({hit.polygon, hit.position});
+      }
+    });
+    for (const std::vector<LightSpot>& row : rows) out.insert(out.end(), row.begin(), row.end());
+  }
+  return out;
 }
 
 DirectIrradiance direct_irradiance(const Polygon& p, const std::vector<PunctualLight>& lights, const RayScene* rays, int n,

@@ -60,6 +60,19 @@ double exact_mean(const PunctualLight& l, const Polygon& p) {
   return sum / (kN * kN);
 }
 
+// A scene solved by the hierarchical method at its defaults, its punctual lights on.
+struct Solved {
+  explicit Solved(const Scene& s) : rays(s), tree(build_cluster_tree(s)), h(s, tree) {
+    settings.lights = &s.lights;
+    solve_hierarchical(h, rays, settings, stats);
+  }
+  RayScene rays;
+  ClusterTree tree;
+  Hierarchy h;
+  HierarchicalSettings settings;
+  HierarchicalStats stats;
+};
+
 TEST(PunctualLights, PowerOfPointAndSpot) {
   EXPECT_NEAR(punctual_power(point({0, 0, 0}, 2.0)).x, 8 * kPi, 1e-12);
   // Full intensity inside the inner cone, the falloff's (ramp)² between the cones: a third of the ring.
@@ -89,14 +102,9 @@ TEST(PunctualLights, SpotLightLightsOnlyItsCone) {
   s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {}});
   s.polygons.push_back(test::quad({-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}));
   s.lights.push_back(spot({0, 0, 2}, {0, 0, -1}, 20.0, 20 * kPi / 180, 30 * kPi / 180));
-  const RayScene rays(s);
-  const ClusterTree tree = build_cluster_tree(s);
-  Hierarchy h(s, tree);
-  HierarchicalSettings settings;
-  settings.lights = &s.lights;
-  HierarchicalStats stats;
-  solve_hierarchical(h, rays, settings, stats);
-  EXPECT_GT(stats.light_refinements, 0u);
+  const Solved solved(s);
+  const Hierarchy& h = solved.h;
+  EXPECT_GT(solved.stats.light_refinements, 0u);
   const double edge = 2 * std::tan(30 * kPi / 180), inner = 2 * std::tan(20 * kPi / 180);
   int outside = 0, within = 0;
   for (const HNode& n : h.nodes()) {
@@ -119,6 +127,97 @@ TEST(PunctualLights, SpotLightLightsOnlyItsCone) {
   }
   EXPECT_GT(outside, 0);
   EXPECT_GT(within, 4);
+}
+
+// A roof 3 m above the floor (z = 3, black, facing down) with a 1 m square opening over x, y ∈ [0, 1],
+// walls around, and the sun 30° from the zenith towards +x: light arrives along −w, w = (sin θ, 0, cos θ).
+constexpr double kSunTheta = 30 * kPi / 180, kRoof = 3;
+Scene roof_with_opening() {
+  Scene s;
+  s.source = "roof";
+  s.materials.push_back({"floor", {0.5, 0.5, 0.5}, {}});
+  s.materials.push_back({"black", {0, 0, 0}, {}});
+  auto down = [](double x0, double y0, double x1, double y1) {  // a ceiling piece, facing down
+    return test::quad({x0, y0, kRoof}, {x0, y1, kRoof}, {x1, y1, kRoof}, {x1, y0, kRoof}, 1);
+  };
+  s.polygons.push_back(test::quad({-4, -3, 0}, {2, -3, 0}, {2, 3, 0}, {-4, 3, 0}, 0));  // the floor, facing up
+  s.polygons.push_back(down(-4, -3, 0, 3));
+  s.polygons.push_back(down(1, -3, 2, 3));
+  s.polygons.push_back(down(0, -3, 1, 0));
+  s.polygons.push_back(down(0, 1, 1, 3));
+  // Walls facing in.
+  s.polygons.push_back(test::quad({-4, -3, 0}, {-4, 3, 0}, {-4, 3, kRoof}, {-4, -3, kRoof}, 1));
+  s.polygons.push_back(test::quad({2, -3, 0}, {2, -3, kRoof}, {2, 3, kRoof}, {2, 3, 0}, 1));
+  s.polygons.push_back(test::quad({-4, -3, 0}, {-4, -3, kRoof}, {2, -3, kRoof}, {2, -3, 0}, 1));
+  s.polygons.push_back(test::quad({-4, 3, 0}, {2, 3, 0}, {2, 3, kRoof}, {-4, 3, kRoof}, 1));
+  PunctualLight sun;
+  sun.name = "sun";
+  sun.type = PunctualLight::Type::directional;
+  sun.direction = {-std::sin(kSunTheta), 0, -std::cos(kSunTheta)};
+  sun.intensity = {100, 100, 100};
+  s.lights.push_back(sun);
+  return s;
+}
+
+// The opening's image on the floor along w: x ∈ [−3 tan θ, 1 − 3 tan θ], y ∈ [0, 1]. Across its edges
+// parallel to y the penumbra is 3 (tan(θ + α/2) − tan(θ − α/2)) wide (α the sun's angular diameter).
+const double kLitX0 = -kRoof * std::tan(kSunTheta), kLitX1 = 1 - kRoof * std::tan(kSunTheta);
+const double kPenumbra = kRoof * (std::tan(kSunTheta + kSunDiameter / 2) - std::tan(kSunTheta - kSunDiameter / 2));
+
+// At points: the sun's full irradiance E⊥ cos θ in the patch, exactly nothing in the shadow, and the
+// penumbra across the patch's edge as wide as the sun's disc makes it, no wider.
+TEST(PunctualLights, TheSunThroughAnOpening) {
+  const Scene s = roof_with_opening();
+  const RayScene rays(s);
+  const Vec3 up(0, 0, 1);
+  uint64_t cast = 0;
+  const double full = 100 * std::cos(kSunTheta);
+  EXPECT_NEAR(point_irradiance({(kLitX0 + kLitX1) / 2, 0.5, 0}, up, s.lights, &rays, cast).x, full, 1e-9 * full);
+  EXPECT_EQ(cast, uint64_t(kSunRays));
+  EXPECT_EQ(point_irradiance({1.5, 0.5, 0}, up, s.lights, &rays, cast).x, 0.0);
+  EXPECT_EQ(point_irradiance({kLitX0 - kPenumbra, 0.5, 0}, up, s.lights, &rays, cast).x, 0.0);
+  // A scan across the edge x = kLitX1 (the opening's x = 1): partly lit only within the penumbra,
+  // over most of it, and darker the further out.
+  double first = INFINITY, last = -INFINITY, before = full;
+  for (int k = -400; k <= 400; ++k) {
+    const double x = kLitX1 + kPenumbra * k / 200.0;
+    const double e = point_irradiance({x, 0.5, 0}, up, s.lights, &rays, cast).x;
+    EXPECT_LE(e, before + 1e-9 * full) << "at " << x;
+    before = e;
+    if (e > 0 && e < full * (1 - 1e-9)) first = std::min(first, x), last = std::max(last, x);
+  }
+  EXPECT_GE(first, kLitX1 - kPenumbra / 2 - 1e-9);
+  EXPECT_LE(last, kLitX1 + kPenumbra / 2 + 1e-9);
+  EXPECT_GT(last - first, 0.75 * kPenumbra);  // 16 rays: the pattern's outermost points reach 0.98 of the radius
+  // A point source of the same direction (angular diameter 0): a hard edge.
+  Scene hard = s;
+  hard.lights[0].angular_diameter = 0;
+  EXPECT_EQ(point_irradiance({kLitX1 - 1e-3, 0.5, 0}, up, hard.lights, &rays, cast).x, full);
+  EXPECT_EQ(point_irradiance({kLitX1 + 1e-3, 0.5, 0}, up, hard.lights, &rays, cast).x, 0.0);
+}
+
+// The hierarchical solver at its defaults: every leaf wholly inside the sunlit patch (past the
+// penumbra) shows ρ E⊥ cos θ, every leaf wholly outside it nothing (all else is black).
+TEST(PunctualLights, TheSunLightsTheFloorThroughAnOpeningExactly) {
+  const Scene s = roof_with_opening();
+  const Solved solved(s);
+  const Hierarchy& h = solved.h;
+  const double lit = 0.5 * 100 * std::cos(kSunTheta), margin = kPenumbra / 2 + 1e-9;
+  int inside = 0, outside = 0;
+  for (const HNode& n : h.nodes()) {
+    if (n.cluster || n.child_count || n.polygon != 0) continue;
+    Bounds b;
+    for (int k = 0; k < n.shape.count; ++k) b.extend(n.shape.v[k]);
+    if (b.lo.x >= kLitX0 + margin && b.hi.x <= kLitX1 - margin && b.lo.y >= margin && b.hi.y <= 1 - margin) {
+      ++inside;
+      EXPECT_NEAR(n.B.x, lit, 0.01 * lit) << "leaf at " << n.center.x << ", " << n.center.y;
+    } else if (b.hi.x <= kLitX0 - margin || b.lo.x >= kLitX1 + margin || b.hi.y <= -margin || b.lo.y >= 1 + margin) {
+      ++outside;
+      EXPECT_EQ(n.B.x, 0.0) << "leaf at " << n.center.x << ", " << n.center.y;
+    }
+  }
+  EXPECT_GT(inside, 0);
+  EXPECT_GT(outside, 0);
 }
 
 class PunctualBake : public test::TempDirTest {
@@ -170,6 +269,50 @@ TEST_F(PunctualBake, PointLightInARoomThroughAFile) {
     // Closed: the audit balances (the lights' power counted where it lands).
     EXPECT_LE(r["energy_audit"]["imbalance"].get<double>(), 1e-4) << method;
   }
+}
+
+// The sun through a file: the glTF writer and reader keep it (KHR_lights_punctual "directional", its
+// angular size in extras where not the sun's), the plan names it, and the bake's floor in the sunlit
+// patch shows ρ E⊥ cos θ.
+TEST_F(PunctualBake, TheSunThroughAFile) {
+  Scene s = roof_with_opening();
+  const std::string file = (dir_ / "roof.glb").string();
+  write_scene_gltf(s, file);
+  const Scene back = read_gltf(file);
+  ASSERT_EQ(back.lights.size(), 1u);
+  EXPECT_EQ(back.lights[0].type, PunctualLight::Type::directional);
+  EXPECT_LT(length(back.lights[0].direction - s.lights[0].direction), 1e-6);
+  EXPECT_NEAR(back.lights[0].intensity.x, 100.0, 1e-6);
+  EXPECT_EQ(back.lights[0].angular_diameter, kSunDiameter);
+  s.lights[0].angular_diameter = 0.01;
+  const std::string wider = (dir_ / "wider.glb").string();
+  write_scene_gltf(s, wider);
+  EXPECT_NEAR(read_gltf(wider).lights[0].angular_diameter, 0.01, 1e-12);
+
+  BakeSettings b;
+  b.scene = file;
+  b.output = (dir_ / "roof").string();
+  b.progress = false;
+  b.exposure = 1.0;
+  bake(b);
+  std::ifstream in(b.output + "/report.json");
+  const nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_NE(r["effects"]["punctual"]["reason"].get<std::string>().find("1 directional"), std::string::npos);
+  EXPECT_TRUE(r["effects"]["visibility"]["on"].get<bool>());
+  const ChunkMesh mesh = read_bake_mesh(b.output);
+  const double lit = 0.5 * 100 * std::cos(kSunTheta);
+  int seen = 0;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double x = mesh.positions[3 * v], y = mesh.positions[3 * v + 1], z = mesh.positions[3 * v + 2];
+    if (std::fabs(z) > 1e-6 || mesh.normals[3 * v + 2] < 0.9) continue;
+    if (x > kLitX0 + 0.2 && x < kLitX1 - 0.2 && y > 0.2 && y < 0.8) {
+      ++seen;
+      EXPECT_NEAR(mesh.radiosity[3 * v], lit, 0.01 * lit) << "at " << x << ", " << y;
+    } else if (x > kLitX1 + 0.5 || y > 1.5 || y < -0.5) {
+      EXPECT_EQ(mesh.radiosity[3 * v], 0.0f) << "at " << x << ", " << y;
+    }
+  }
+  EXPECT_GT(seen, 0);
 }
 
 TEST_F(PunctualBake, NoEmitterAtAllIsAnError) {

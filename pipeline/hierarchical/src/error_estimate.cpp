@@ -10,6 +10,8 @@
 // a white room and a grey one, in one room and in a hundred.
 #include "error_oracle.h"
 
+#include "walkrad/formfactor/punctual_lights.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -84,7 +86,9 @@ double ErrorOracle::light_density() const {
       area += n.area;
       power += n.area * luminance(n.emission);
     }
-  for (const PunctualLight& l : h_.scene().lights) power += 4 * kPi * luminance(l.intensity);  // at most
+  for (const PunctualLight& l : h_.scene().lights)  // at most
+    power += l.type == PunctualLight::Type::directional ? luminance(directional_power(l, h_.scene().polygons))
+                                                        : 4 * kPi * luminance(l.intensity);
   light_density_ = area > 0 ? power / area : 0.0;
   return light_density_;
 }

@@ -6,6 +6,8 @@
 #include "refinement.h"
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -24,6 +26,8 @@ Refinement::Refinement(Hierarchy& h, const RayScene& rays, const HierarchicalSet
     for (uint32_t i = 0; i < h_.nodes().size(); ++i)
       if (!h_[i].cluster) light_frontier_.push_back(i);
     light_spread_ = direct_for(light_frontier_);
+    if (s_.visibility) light_spots_ = light_spots(*s_.lights, h_.scene(), rays_);  // without shadows, no patches
+    widen_by_spots(light_frontier_, light_spread_);
   }
   min_area_ = s_.min_area > 0 ? s_.min_area : typical_area;
   stats_.min_area = min_area_;
@@ -39,6 +43,7 @@ std::vector<LinkRequest> Refinement::take_requests() {
 void Refinement::forget_light_frontier() {
   std::vector<uint32_t>().swap(light_frontier_);
   std::vector<double>().swap(light_spread_);
+  std::vector<LightSpot>().swap(light_spots_);
 }
 
 std::vector<double> Refinement::direct_for(const std::vector<uint32_t>& elements) {
@@ -66,6 +71,34 @@ std::vector<double> Refinement::direct_for(const std::vector<uint32_t>& elements
   return spread;
 }
 
+void Refinement::widen_by_spots(const std::vector<uint32_t>& elements, std::vector<double>& spread) {
+  if (light_spots_.empty()) return;
+  std::unordered_map<uint32_t, size_t> at;  // node → its index in elements
+  for (size_t k = 0; k < elements.size(); ++k) at.emplace(elements[k], k);
+  std::vector<LightSpot> kept;
+  std::vector<int> taken(elements.size(), 0);
+  std::vector<std::pair<size_t, Vec3>> probes;  // (element's index, spot)
+  for (const LightSpot& spot : light_spots_) {
+    const auto it = at.find(leaf_at(h_, h_.polygon_root(spot.polygon), spot.position));
+    if (it == at.end()) continue;
+    kept.push_back(spot);
+    if (taken[it->second]++ < kSpotsPerNode) probes.push_back({it->second, spot.position});
+  }
+  light_spots_ = std::move(kept);
+  std::vector<double> shown(probes.size());
+  std::vector<uint64_t> rays(probes.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, probes.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t j = r.begin(); j != r.end(); ++j)
+      shown[j] = luminance(point_irradiance(probes[j].second, h_[elements[probes[j].first]].normal, *s_.lights, &rays_, rays[j]));
+  });
+  for (size_t j = 0; j < probes.size(); ++j) {
+    const HNode& n = h_[elements[probes[j].first]];
+    spread[probes[j].first] = std::max(spread[probes[j].first], luminance(n.rho) * std::fabs(shown[j] - luminance(n.D)));
+    spot_shown_ = std::max(spot_shown_, luminance(n.rho) * shown[j]);
+    stats_.light_rays += rays[j];
+  }
+}
+
 void Refinement::compute_missing_direct() {
   std::vector<uint32_t> missing;
   for (uint32_t i = 0; i < h_.nodes().size(); ++i)
@@ -81,13 +114,17 @@ void Refinement::refine_for_lights() {
     std::vector<uint32_t> next;
     for (size_t k = 0; k < frontier.size(); ++k) {
       const uint32_t i = frontier[k];
-      if (!splittable(i) || spread[k] <= oracle_.tolerance(i)) continue;  // spread: of what it shows
+      // Where every sample missed the light (a sun patch only the spots found) nothing is lit yet and
+      // the oracle's white is 0: the scale is then what the spots show.
+      const double tolerance = oracle_.state().white > 0 || spot_shown_ <= 0 ? oracle_.tolerance(i) : s_.error * spot_shown_;
+      if (!splittable(i) || spread[k] <= tolerance) continue;  // spread: of what it shows
       h_.subdivide(i);
       ++stats_.light_refinements;
       for (uint32_t c = 0; c < h_[i].child_count; ++c) next.push_back(h_.child(h_[i], c));
     }
     frontier = std::move(next);
     spread = direct_for(frontier);
+    widen_by_spots(frontier, spread);
   }
 }
 

@@ -145,6 +145,11 @@ class Refinement {
   // Direct irradiance of the given elements (4 × 4 points each, a shadow ray per point and light), in
   // parallel; returns how unevenly each one shows it (ρ × the spread, plus τ × the back's).
   std::vector<double> direct_for(const std::vector<uint32_t>& elements);
+  // The spots (light_spots) those samples missed: each node's spread widened by what up to
+  // kSpotsPerNode spots inside it show against its mean, at a shadow-ray evaluation each; the spots in
+  // none of the nodes (settled elsewhere) are dropped.
+  static constexpr int kSpotsPerNode = 4;
+  void widen_by_spots(const std::vector<uint32_t>& elements, std::vector<double>& spread);
 
   // Whether the receiver's display needs a close pair (close_pair) split: an error as large as what it
   // shows stays within its tolerance where its display weight is under e.
@@ -211,6 +216,8 @@ class Refinement {
   std::vector<uint8_t> two_sided_;        // by node: a cluster holding a transmitting polygon or a twin
   std::vector<uint32_t> light_frontier_;  // the input polygons' elements and their punctual-light spread,
   std::vector<double> light_spread_;      // from the constructor to refine_for_lights
+  std::vector<LightSpot> light_spots_;    // where directional lights reach, inside the light frontier
+  double spot_shown_ = 0;                 // the most a spot shows (ρ E): the scale where nothing else is lit
   std::vector<LinkRequest> requests_;     // the round's new links, as the refinement asks for them
   uint64_t elsewhere_ = 0;                // this round's new links whose receivers another rank holds
   // The pairs refine_existing's receivers hand on (replace_link, split_link), refined a batch at a time,

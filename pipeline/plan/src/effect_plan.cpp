@@ -32,7 +32,7 @@ bool reflector_faces_light(const Scene& scene, double tol) {
     if (luminance(scene.materials[p.material].reflectance) <= 0) continue;
     const Vec3 n = polygon_normal(p);
     for (const PunctualLight& l : scene.lights)
-      if (dot(l.position - p.v[0], n) > tol) return true;
+      if (l.type == PunctualLight::Type::directional ? dot(l.direction, n) < 0 : dot(l.position - p.v[0], n) > tol) return true;
     for (size_t e : emitters) {
       const Polygon& l = scene.polygons[e];
       if (e != i && in_front(p, n, l, tol) && in_front(l, polygon_normal(l), p, tol)) return true;
@@ -226,20 +226,27 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                                           : "no surface that light reaches reflects (ρ = 0): direct light only, B = E + one gather";
   // A light outside the enclosure (behind a wall's plane) is hidden from the opposite walls by it.
   bool lights_inside = true;
-  for (const PunctualLight& l : scene.lights)
+  for (const PunctualLight& l : scene.lights) {
+    lights_inside = lights_inside && l.type != PunctualLight::Type::directional;  // the sun: outside everything
     for (const Polygon& p : scene.polygons) lights_inside = lights_inside && dot(l.position - p.v[0], polygon_normal(p)) >= -tol;
+  }
   const bool convex = is_convex_enclosure(scene);  // O(n²): once
   plan.visibility.on = !convex || !lights_inside;
   plan.visibility.reason = !convex ? "some polygon lies behind another's plane: occlusion is possible"
                            : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
                                                 : "a convex enclosure with nothing inside: no occlusion possible, no rays";
-  size_t points = 0, spots = 0, luminaires = 0;
+  size_t points = 0, spots = 0, suns = 0, luminaires = 0;
   for (const PunctualLight& l : scene.lights)
-    (l.type == PunctualLight::Type::spot ? spots : l.type == PunctualLight::Type::ies ? luminaires : points) += 1;
+    (l.type == PunctualLight::Type::spot          ? spots
+     : l.type == PunctualLight::Type::ies         ? luminaires
+     : l.type == PunctualLight::Type::directional ? suns
+                                                  : points) += 1;
   plan.punctual.on = !scene.lights.empty();
-  plan.punctual.reason = plan.punctual.on ? std::to_string(points) + " point and " + std::to_string(spots) +
-                                                " spot lights (KHR_lights_punctual), " + std::to_string(luminaires) +
-                                                " IES luminaires: shot straight to the elements, a shadow ray per sample"
+  plan.punctual.reason = plan.punctual.on ? std::to_string(points) + " point, " + std::to_string(spots) + " spot and " +
+                                                std::to_string(suns) + " directional lights (KHR_lights_punctual), " +
+                                                std::to_string(luminaires) +
+                                                " IES luminaires: shot straight to the elements, a shadow ray per sample" +
+                                                (suns ? " (towards a directional light, one to each of a pattern of points of its disc)" : "")
                                           : "no punctual lights";
   plan.importance.on = !views.empty() && !view_independent;
   plan.importance.reason = views.empty() ? "no viewpoints: view-independent refinement (BF oracle)"

@@ -90,8 +90,15 @@ struct Viewpoint {
 // its IES profile says: W/sr = `intensity` (colour × multiplier × tilt factor) × the profile's candela
 // towards the direction, in the light's frame (ies.h; light_frame below): the web's zero point along
 // `direction` (the node's −Z), type C's horizontal angle 90° along `up` (the node's +Y).
+// A directional light (the sun) shines along `direction` from infinitely far: its intensity is read as
+// irradiance, W/m² per channel on a surface facing it (the lux read one for one as W/m²), its light
+// arriving from a disc of `angular_diameter` around −direction (the sun's 0.53°: its shadows' penumbra);
+// position and range mean nothing for it.
+inline constexpr double kSunDiameter = 0.53 * kPi / 180;  // the sun's, seen from the Earth
+inline constexpr double kMaxAngularDiameter = 0.5;  // radians: a wider source is a sky, not a sun
+
 struct PunctualLight {
-  enum class Type { point, spot, ies };
+  enum class Type { point, spot, ies, directional };
   std::string name;
   Type type = Type::point;
   Vec3 position;
@@ -100,6 +107,7 @@ struct PunctualLight {
   Vec3 intensity;            // W/sr per channel (ies: per candela)
   double range = 0;          // metres; 0: unlimited
   double inner_cone = 0, outer_cone = 0.7853981633974483;  // spot: radians, 0 ≤ inner < outer ≤ π/2
+  double angular_diameter = kSunDiameter;                  // directional: radians, 0 (a hard shadow) to kMaxAngularDiameter
   std::shared_ptr<const IesProfile> profile;  // ies: the photometric data (shared, never changed)
 };
 

@@ -74,7 +74,7 @@ class ReferenceTracer {
   };
   void selection(const Vec3& x, const Vec3& n, Choice& choice) const;
   Vec3 direct(const Vec3& x, const Vec3& n, const Choice& choice, Rng& rng, uint64_t& rays) const;
-  Vec3 punctual(const Vec3& x, const Vec3& n, uint64_t& rays) const;
+  Vec3 punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const;
   void scatter(const Material& m, Vec3& n, Vec3& beta, Rng& rng) const;
   // The solid-angle pdf with which next-event estimation at the vertex of `choice` draws a point of
   // `polygon` at distance² r2.

@@ -25,6 +25,9 @@ class Rng {
   uint64_t state_;
 };
 
+// t and b with unit n a right-handed orthonormal frame (t from the x or y axis).
+void frame(const Vec3& n, Vec3& t, Vec3& b);
+
 // A point of the polygon from (u, v) in [0,1)²: uniform by area for a triangle (square-root
 // warp), bilinear for a quad (uniform by area for a parallelogram).
 Vec3 sample_polygon(const Polygon& p, double u, double v);
@@ -36,5 +39,9 @@ Vec3 cosine_direction(const Vec3& n, Rng& rng);
 // Uniform over the cap of half-angle `cone` about unit axis (the whole sphere for cone = π), from two
 // draws of rng (the height then φ).
 Vec3 cone_direction(const Vec3& axis, double cone, Rng& rng);
+
+// The same map from given (u, v) in [0,1)²: u the share of the cap's solid angle within the direction's
+// polar angle, v its azimuth's share of the turn (stratified patterns: the sun's rays).
+Vec3 cap_direction(const Vec3& axis, double cone, double u, double v);
 
 }  // namespace walkrad

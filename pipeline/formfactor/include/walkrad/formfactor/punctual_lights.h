@@ -8,6 +8,10 @@
 // clamp(1 − (r / range)⁴, 0, 1). An element's
 // irradiance is the mean over stratified points of its surface, one shadow ray (Embree) each; what
 // it reflects, ρ·E, then travels through the links like emitted light (hierarchical and classic).
+// A directional light (the sun) gives E(x) = E⊥ · max(0, n·ω) · V_sun(x), ω = −direction: V_sun the
+// share of kSunRays shadow rays, towards a fixed stratified pattern of the sun's disc, that leave the
+// scene unblocked (the penumbra: a uniform disc of the light's angular diameter; the cosine taken at
+// the disc's centre, within (angular radius)²/2 of its mean over the disc).
 #pragma once
 
 #include <cstdint>
@@ -22,12 +26,18 @@ namespace walkrad {
 // falloff, or the IES profile's candela (the light's intensity is per candela).
 double light_distribution(const PunctualLight& light, const Vec3& out);
 
+// Shadow rays per point for a directional light: the penumbra in steps of 1/16 of the sun.
+inline constexpr int kSunRays = 16;
+
 // The range window at distance r (1 without a range).
 double range_window(const PunctualLight& light, double r);
 
 // What the light radiates, W per channel: 4π I for a point, I ∫ spot dΩ for a spot, I × the
-// profile's flux for a luminaire (the range's window ignored: it depends on what stands where).
+// profile's flux for a luminaire (the range's window ignored: it depends on what stands where); for a
+// directional light, what falls on the polygons facing it with nothing in the way, Σ E⊥ A max(0, n·ω),
+// which needs the scene: directional_power (punctual_power gives 0 for it).
 Vec3 punctual_power(const PunctualLight& light);
+Vec3 directional_power(const PunctualLight& light, const std::vector<Polygon>& polygons);
 
 // Irradiance at a surface point from every light; rays: occluders (nullptr: none). rays_cast counts.
 // The shadow rays leave from origin when given (a point at a polygon's edge lies on its neighbour's
@@ -39,6 +49,19 @@ struct DirectIrradiance {
   Vec3 mean;           // W/m², over the polygon
   double spread = 0;   // largest − smallest luminance over its points (how unevenly it is lit)
 };
+
+// Where the directional lights' rays first meet a surface facing them: for each light a grid × grid of
+// parallel rays along it through a square about the scene's bounding sphere (cells outside its disc
+// skipped), a spot where one meets a front face. They are points the light reaches that a receiver's
+// stratified samples can all miss (the sun's patch through a window on a large floor: Refinement splits
+// towards them). In row order, deterministic.
+struct LightSpot {
+  uint32_t polygon;
+  Vec3 position;
+};
+inline constexpr int kSpotGrid = 1024;
+std::vector<LightSpot> light_spots(const std::vector<PunctualLight>& lights, const Scene& scene, const RayScene& rays,
+                                   int grid = kSpotGrid);
 
 // Over n × n stratified points of the polygon (a convex triangle or quad).
 DirectIrradiance direct_irradiance(const Polygon& p, const std::vector<PunctualLight>& lights, const RayScene* rays, int n,
