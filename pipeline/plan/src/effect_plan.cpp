@@ -227,8 +227,9 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   // A light outside the enclosure (behind a wall's plane) is hidden from the opposite walls by it.
   bool lights_inside = true;
   for (const PunctualLight& l : scene.lights) {
-    lights_inside = lights_inside && l.type != PunctualLight::Type::directional;  // the sun: outside everything
-    for (const Polygon& p : scene.polygons) lights_inside = lights_inside && dot(l.position - p.v[0], polygon_normal(p)) >= -tol;
+    if (l.type == PunctualLight::Type::directional) lights_inside = false;  // the sun: outside everything
+    for (size_t i = 0; i < scene.polygons.size() && lights_inside; ++i)
+      lights_inside = dot(l.position - scene.polygons[i].v[0], polygon_normal(scene.polygons[i])) >= -tol;
   }
   const bool convex = is_convex_enclosure(scene);  // O(n²): once
   plan.visibility.on = !convex || !lights_inside;
