@@ -10,6 +10,7 @@ if(WALKRAD_BUILD_PIPELINE)
   find_package(TBB CONFIG REQUIRED)
   find_package(embree 3 CONFIG REQUIRED)
   find_package(meshoptimizer CONFIG REQUIRED)
+  pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)  # Clipper: a scene's openings
   find_package(CLI11 CONFIG REQUIRED)
   # Open MPI (a bake over several ranks: walkrad/core/ranks.h); the runtime never links it.
   find_package(MPI REQUIRED COMPONENTS CXX)

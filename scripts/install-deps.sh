@@ -8,7 +8,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 packages=(
   build-essential cmake ninja-build pkg-config python3
   libtinygltf-dev libdraco-dev libembree-dev libopenvdb-dev libboost-iostreams-dev libopenvdb-tools
-  libmeshoptimizer-dev libtbb-dev nlohmann-json3-dev libstb-dev libcli11-dev libfmt-dev libspdlog-dev
+  libmeshoptimizer-dev libtbb-dev nlohmann-json3-dev libstb-dev libcli11-dev libfmt-dev libspdlog-dev libpolyclipping-dev
   libgtest-dev libgmock-dev libbenchmark-dev python3-matplotlib libopenmpi-dev openmpi-bin
   libglfw3-dev libepoxy-dev libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0 xvfb xauth
   chromium

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 
 #include "gltf_access.h"
 #include "gltf_ies.h"
@@ -401,9 +402,11 @@ Scene read_gltf(const std::string& path, const std::string& input_folder) {
     r.material_map.push_back(int(i));
   }
   std::vector<int> roots;
+  int shown = -1;  // the scene shown
   if (!model.scenes.empty()) {
     const int s = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size()) ? model.defaultScene : 0;
     roots = model.scenes[s].nodes;
+    shown = s;
   } else {
     // No scene: every node that is nobody's child is a root.
     std::vector<bool> child(model.nodes.size(), false);
@@ -412,6 +415,23 @@ Scene read_gltf(const std::string& path, const std::string& input_folder) {
     for (size_t i = 0; i < model.nodes.size(); ++i) if (!child[i]) roots.push_back(int(i));
   }
   for (int root : roots) r.visit(root, identity(), 0);
+  // The sky: the scene's extras "walkrad:sky", a spec as `walkrad bake --sky` takes (sky.h), glTF's +Y up;
+  // after the lights, whose sun a clear sky may follow.
+  if (shown >= 0 && model.scenes[size_t(shown)].extras.IsObject() && model.scenes[size_t(shown)].extras.Has("walkrad:sky")) {
+    const std::string place = "scenes[" + std::to_string(shown) + "].extras.walkrad:sky";
+    const tinygltf::Value& v = model.scenes[size_t(shown)].extras.Get("walkrad:sky");
+    if (!v.IsString()) throw InputError(path, place, "must be a string such as \"cie-overcast:1000\" (see walkrad bake --sky)");
+    const tinygltf::Value& extras = model.scenes[size_t(shown)].extras;
+    if (extras.Has("walkrad:up")) {  // the zenith, where not glTF's +Y
+      const tinygltf::Value& u = extras.Get("walkrad:up");
+      const std::string uplace = "scenes[" + std::to_string(shown) + "].extras.walkrad:up";
+      if (!u.IsArray() || u.ArrayLen() != 3 || !u.Get(0).IsNumber() || !u.Get(1).IsNumber() || !u.Get(2).IsNumber())
+        throw InputError(path, uplace, "must be three numbers [x, y, z]");
+      scene.up = {u.Get(0).GetNumberAsDouble(), u.Get(1).GetNumberAsDouble(), u.Get(2).GetNumberAsDouble()};
+    }
+    set_sky(scene, parse_sky(v.Get<std::string>(), path, place, scene.up, scene.lights,
+                             std::filesystem::path(path).parent_path().string(), folder));
+  }
   if (scene.dropped_degenerate)
     scene.warnings.push_back(std::to_string(scene.dropped_degenerate) + " zero-area triangles dropped");
   if (scene.polygons.empty()) throw InputError(path, "", "the scene has no triangles");

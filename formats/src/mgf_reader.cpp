@@ -722,6 +722,7 @@ Scene read_mgf(const std::string& path, const MgfOptions& options, MgfStats* sta
   if (options.default_sides != 1 && options.default_sides != 2) throw std::invalid_argument("MGF default sides must be 1 or 2");
   Scene scene;
   scene.source = path;
+  scene.up = {0, 0, 1};  // MGF states no zenith; RenderPark's scenes but one have z up (--up for the others)
   MgfStats local;
   Reader(options, stats ? *stats : local, scene, input_limits::input_folder(path, options.input_folder)).read(path);
   return scene;

@@ -220,7 +220,7 @@ void add_ies_lights(const Scene& scene, tinygltf::Model& model, tinygltf::Scene&
 
 void add_punctual_lights(const Scene& scene, tinygltf::Model& model, tinygltf::Scene& gscene) {
   for (const PunctualLight& l : scene.lights) {  // KHR_lights_punctual: a node shining along its −Z
-    if (l.type == PunctualLight::Type::ies) continue;
+    if (l.type == PunctualLight::Type::ies || l.type == PunctualLight::Type::sky) continue;
     tinygltf::Light light;
     light.name = l.name;
     light.type = l.type == PunctualLight::Type::spot          ? "spot"
@@ -255,6 +255,26 @@ void add_punctual_lights(const Scene& scene, tinygltf::Model& model, tinygltf::S
   }
 }
 
+// The sky: the scene's extras "walkrad:sky" (its spec; an image's path relative to the file written) and,
+// where its zenith is not glTF's +Y, "walkrad:up".
+void add_sky(const Scene& scene, const std::string& path, tinygltf::Scene& gscene) {
+  for (const PunctualLight& l : scene.lights) {
+    if (l.type != PunctualLight::Type::sky || !l.sky) continue;
+    const Sky& sky = *l.sky;
+    tinygltf::Value::Object extras;
+    std::string spec = sky.spec;
+    if (sky.kind == Sky::Kind::image) {
+      namespace fs = std::filesystem;
+      spec = fs::absolute(sky.path).lexically_normal().lexically_relative(fs::absolute(path).parent_path()).generic_string();
+    }
+    extras["walkrad:sky"] = tinygltf::Value(spec);
+    if (length(sky.up - Vec3(0, 1, 0)) > 1e-12)
+      extras["walkrad:up"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(sky.up.x), tinygltf::Value(sky.up.y),
+                                                                    tinygltf::Value(sky.up.z)});
+    gscene.extras = tinygltf::Value(extras);
+  }
+}
+
 }  // namespace
 
 void write_scene_gltf(const Scene& scene, const std::string& path) {
@@ -278,6 +298,7 @@ void write_scene_gltf(const Scene& scene, const std::string& path) {
   add_cameras(scene, model, gscene);
   add_ies_lights(scene, model, gscene);
   add_punctual_lights(scene, model, gscene);
+  add_sky(scene, path, gscene);
   model.scenes.push_back(gscene);
   model.defaultScene = 0;
 

@@ -17,6 +17,7 @@
 #include "walkrad/formats/gltf_reader.h"
 #include "walkrad/formats/manifest.h"
 #include "walkrad/formats/mgf_reader.h"
+#include "walkrad/formats/sky.h"
 #include "walkrad/formats/walkthrough.h"
 
 namespace walkrad {
@@ -255,6 +256,69 @@ TEST_F(BadInput, DirectionalLightsInGltf) {
   area["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "area";
   const std::string a = write("area.gltf", area);
   expect_refused([&] { read_gltf(a); }, a, kExitMissingFeature, {"lights[0]", "light type 'area' is not supported"});
+}
+
+// The sky: read from the scene's extras (a spec, as --sky takes), kept with glTF's +Y up or the extras'
+// walkrad:up; every malformed spec refused naming the file, the place and the fault, or --sky and the spec.
+TEST_F(BadInput, SkiesInGltfAndOnTheCommandLine) {
+  nlohmann::json g = quad_gltf();
+  g["scenes"][0]["extras"] = {{"walkrad:sky", "cie-overcast:800"}};
+  const Scene s = read_gltf(write("sky.gltf", g));
+  ASSERT_EQ(s.lights.size(), 1u);
+  ASSERT_EQ(s.lights[0].type, PunctualLight::Type::sky);
+  EXPECT_EQ(s.lights[0].sky->kind, Sky::Kind::cie_overcast);
+  EXPECT_EQ(s.lights[0].sky->radiance, Vec3(800, 800, 800));
+  EXPECT_EQ(s.lights[0].sky->up, Vec3(0, 1, 0));
+  nlohmann::json zup = g;
+  zup["scenes"][0]["extras"]["walkrad:up"] = {0, 0, 2};
+  EXPECT_EQ(read_gltf(write("zup.gltf", zup)).lights[0].sky->up, Vec3(0, 0, 1));
+  const std::pair<nlohmann::json, std::string> bad[] = {
+      {"overcast:800", "unknown sky 'overcast'"},
+      {"uniform:", "is not a number"},
+      {"uniform:-1", "is not a number from 0 to 1e9"},
+      {"uniform:1,2", "one value or three"},
+      {"uniform:0", "is 0: the sky would give no light"},
+      {"uniform:nan", "is not a number"},
+      {"cie-clear:1000", "cie-clear needs the sun's position"},
+      {"cie-clear:1000@0,-1,0", "the sun is below the horizon"},
+      {"cie-clear:1000@1,2", "is not three numbers"},
+      {"missing.hdr", "missing.hdr"},
+      {"../outside.hdr", "lies outside the input folder"},
+      {42, "must be a string"}};
+  for (const auto& [spec, why] : bad) {
+    nlohmann::json b = g;
+    b["scenes"][0]["extras"]["walkrad:sky"] = spec;
+    const std::string f = write("bad-sky.gltf", b);
+    try {
+      read_gltf(f);
+      ADD_FAILURE() << "read " << spec.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << spec.dump() << ": " << e.what();
+      EXPECT_EQ(e.code(), kExitBadInput) << e.what();
+      if (!spec.is_string() || spec.get<std::string>().find(".hdr") == std::string::npos)
+        EXPECT_EQ(e.file(), f) << e.what();
+    }
+  }
+  nlohmann::json up = g;
+  up["scenes"][0]["extras"]["walkrad:up"] = {0, 1};
+  const std::string u = write("bad-up.gltf", up);
+  expect_refused([&] { read_gltf(u); }, u, kExitBadInput, {"walkrad:up", "three numbers"});
+  // From the command line: --sky and the spec named, the command line's exit code.
+  Scene q = read_gltf(write("plain.gltf", quad_gltf()));
+  try {
+    apply_sky_options(q, "cie-clear:5", "");
+    ADD_FAILURE() << "a clear sky without a sun";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "--sky");
+    EXPECT_EQ(e.code(), kExitBadArguments);
+  }
+  expect_refused([&] { apply_sky_options(q, "uniform:1", "0,0,0"); }, "--up", kExitBadArguments, {"expected a direction"});
+  apply_sky_options(q, "uniform:1,2,3", "0,0,1");
+  ASSERT_EQ(q.lights.size(), 1u);
+  EXPECT_EQ(q.lights[0].sky->up, Vec3(0, 0, 1));
+  apply_sky_options(q, "uniform:4", "");  // replaces it
+  ASSERT_EQ(q.lights.size(), 1u);
+  EXPECT_EQ(q.lights[0].sky->radiance, Vec3(4, 4, 4));
 }
 
 // Devices are refused outside the input folder (input_folder_test.cpp) and, where the folder holds them

@@ -23,6 +23,11 @@ void add_bake(CLI::App& app, BakeCommand& c) {
   c.app->add_option("--mgf-sides", c.bs.mgf_sides,
                     "MGF: the sides of a material that does not state them: 1, as RenderPark reads them, or 2, MGF's own default")
       ->check(CLI::IsMember({1, 2}))->capture_default_str();
+  c.app->add_option("--sky", c.bs.sky,
+                    "light from a sky, in place of the scene file's: uniform:L, cie-overcast:Lz, cie-clear:Lz[@x,y,z] (radiance in "
+                    "W/(m²·sr), one value or R,G,B; the sun's direction, else the scene's directional light) or FILE.hdr "
+                    "(an equirectangular radiance map)");
+  c.app->add_option("--up", c.bs.up, "x,y,z: the sky's zenith (default: +Y for glTF, +Z for MGF)");
   c.app->add_option("-o,--output", c.bs.output, "output folder (default: <scene name>.bake)");
   c.app->add_option("--method", c.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
       ->capture_default_str();

@@ -6,6 +6,7 @@
 #include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_reader.h"
 #include "walkrad/formats/scene_writer.h"
+#include "walkrad/formats/sky.h"
 
 namespace walkrad::command {
 
@@ -18,6 +19,8 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
   c.app->add_option("--mgf-sides", c.mgf_sides,
                     "MGF: the sides of a material that does not state them: 1, as RenderPark reads them, or 2, MGF's own default")
       ->check(CLI::IsMember({1, 2}))->capture_default_str();
+  c.app->add_option("--sky", c.sky, "a sky to write with the scene (walkrad bake --sky), in place of the file's");
+  c.app->add_option("--up", c.up, "x,y,z: the sky's zenith (default: +Y for glTF, +Z for MGF)");
   c.app->add_option("output", c.output, "glTF file to write (.glb or .gltf)")->required()->check(
       [](const std::string& out) {
         const size_t dot = out.find_last_of('.');
@@ -29,7 +32,8 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
 
 int run_convert(const ConvertCommand& c) {
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = read_scene(c.scene, c.input_folder, c.mgf_sides);
+  Scene scene = read_scene(c.scene, c.input_folder, c.mgf_sides);
+  apply_sky_options(scene, c.sky, c.up);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", c.scene.c_str(), w.c_str());
   write_scene_gltf(scene, c.output);
   size_t emitting = 0;

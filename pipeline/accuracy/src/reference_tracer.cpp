@@ -161,11 +161,24 @@ void ReferenceTracer::scatter(const Material& m, Vec3& n, Vec3& beta, Rng& rng) 
 // a point light is a delta in direction, which no cosine-weighted ray can meet. A directional light's
 // (KHR_lights_punctual: lux on a surface facing it, read as W/m²) arrives from a uniform disc of its
 // angular diameter: one direction ω drawn uniformly over that cap, E⊥ (ω·n) if its ray leaves the scene
-// (the disc's radiance E⊥ / Ω times Ω: the estimate's mean is E⊥ over the disc's mean of ω·n).
+// (the disc's radiance E⊥ / Ω times Ω: the estimate's mean is E⊥ over the disc's mean of ω·n). The sky:
+// one cosine-weighted direction ω, π L(ω) if its ray leaves the scene (pdf cos θ / π: the mean is
+// ∫ L V cos θ dω); paths end where they leave, so no light is counted twice.
 Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const {
   Vec3 E;
   const double off = rays_.offset();
   for (const PunctualLight& l : scene_.lights) {
+    if (l.type == PunctualLight::Type::sky) {
+      if (!l.sky) continue;
+      const double u1 = rng.uniform(), u2 = rng.uniform();
+      const Vec3 w = cosine_direction(n, u1, u2);
+      const Vec3 L = l.sky->at(w);
+      if (max_component(L) <= 0) continue;
+      ++rays;
+      if (rays_.occluded(x + n * off, x + w * (2e6 * off))) continue;
+      E += mul(l.intensity, L) * kPi;
+      continue;
+    }
     if (l.type == PunctualLight::Type::directional) {
       const double u1 = rng.uniform(), u2 = rng.uniform();
       const Vec3 w = cap_direction(-l.direction, l.angular_diameter / 2, u1, u2);

@@ -167,6 +167,8 @@ json BakeSettings::to_json() const {
           {"compress", compress}, {"position_tolerance", position_tolerance}, {"radiosity_tolerance", radiosity_tolerance},
           {"effects", effects}, {"volume_min_polygons", volume_min_polygons}, {"volume_penumbra_ratio", volume_penumbra_ratio}};
   if (mgf_sides != 1) j["mgf_sides"] = mgf_sides;  // recorded where it departs from the default (older manifests the same)
+  if (!sky.empty()) j["sky"] = sky;
+  if (!up.empty()) j["up"] = up;
   return j;
 }
 

@@ -5,6 +5,7 @@
 #include "walkrad/core/byte_buffer.h"
 #include "walkrad/core/file_hash.h"
 #include "walkrad/core/ranks.h"
+#include "walkrad/formats/error.h"
 #include "walkrad/formats/scene_reader.h"
 #include "walkrad/formats/walkthrough.h"
 #include "walkrad/scene/scene_cleanup.h"
@@ -18,10 +19,12 @@ namespace {
 static_assert(std::is_trivially_copyable_v<Polygon> && std::is_trivially_copyable_v<Vec3>);
 static_assert(sizeof(Material) == sizeof(std::string) + 3 * sizeof(Vec3) + 8, "Material changed: see bake_inputs.cpp");
 static_assert(sizeof(Viewpoint) == sizeof(std::string) + 3 * sizeof(Vec3) + 16, "Viewpoint changed: see bake_inputs.cpp");
-static_assert(sizeof(PunctualLight) == sizeof(std::string) + 8 + 4 * sizeof(Vec3) + 32 + sizeof(std::shared_ptr<int>),
+static_assert(sizeof(PunctualLight) == sizeof(std::string) + 8 + 4 * sizeof(Vec3) + 32 + 2 * sizeof(std::shared_ptr<int>),
               "PunctualLight changed: see bake_inputs.cpp");
 static_assert(sizeof(IesProfile) == 3 * sizeof(std::string) + 5 * sizeof(std::vector<double>) + 8 + 8 + 8 + 8 + 8,
               "IesProfile changed: see bake_inputs.cpp");
+static_assert(sizeof(Sky) == 8 + 3 * sizeof(Vec3) + 3 * sizeof(std::string) + 8 + sizeof(std::vector<float>) + 8,
+              "Sky changed: see bake_inputs.cpp");
 static_assert(sizeof(Texture) == 8 + sizeof(std::vector<float>) + sizeof(Vec3), "Texture changed: see bake_inputs.cpp");
 
 template <class Io, class M>
@@ -61,11 +64,18 @@ std::vector<uint8_t> scene_to_bytes(const Scene& scene, const std::vector<Viewpo
   out.put_vector(scene.polygons);
   put_views(out, scene.cameras);
   put_views(out, views);
+  out.put(scene.up);
   out.put(uint64_t(scene.lights.size()));
   for (const PunctualLight& l : scene.lights) {
     out.put_string(l.name);
     out.put(l.type), out.put(l.position), out.put(l.direction), out.put(l.up), out.put(l.intensity);
     out.put(l.range), out.put(l.inner_cone), out.put(l.outer_cone), out.put(l.angular_diameter);
+    out.put(bool(l.sky));
+    if (l.sky) {
+      const Sky& k = *l.sky;
+      out.put(k.kind), out.put(k.radiance), out.put(k.up), out.put(k.sun), out.put(k.width), out.put(k.height);
+      out.put(k.mean_luminance), out.put_string(k.file), out.put_string(k.path), out.put_string(k.spec), out.put_vector(k.rgb);
+    }
     out.put(bool(l.profile));
     if (!l.profile) continue;
     const IesProfile& p = *l.profile;
@@ -98,11 +108,18 @@ void scene_from_bytes(const std::vector<uint8_t>& bytes, Scene& scene, std::vect
   in.get_vector(scene.polygons);
   get_views(in, scene.cameras);
   get_views(in, views);
+  get(scene.up);
   scene.lights.resize(size_t(in.get<uint64_t>()));
   for (PunctualLight& l : scene.lights) {
     l.name = in.get_string();
     get(l.type), get(l.position), get(l.direction), get(l.up), get(l.intensity);
     get(l.range), get(l.inner_cone), get(l.outer_cone), get(l.angular_diameter);
+    if (in.get<bool>()) {
+      auto k = std::make_shared<Sky>();
+      get(k->kind), get(k->radiance), get(k->up), get(k->sun), get(k->width), get(k->height);
+      get(k->mean_luminance), k->file = in.get_string(), k->path = in.get_string(), k->spec = in.get_string(), in.get_vector(k->rgb);
+      l.sky = std::move(k);
+    }
     if (!in.get<bool>()) continue;
     auto p = std::make_shared<IesProfile>();
     p->source = in.get_string(), p->version = in.get_string(), p->text = in.get_string();
@@ -121,11 +138,13 @@ void scene_from_bytes(const std::vector<uint8_t>& bytes, Scene& scene, std::vect
   if (!in.done()) throw std::runtime_error("the scene sent by rank 0 has bytes past its end");
 }
 
+
 BakeInputs read_bake_inputs(const BakeSettings& s) {
   BakeInputs in;
   std::vector<uint8_t> bytes;
   if (ranks().rank == 0) {
     in.scene = read_scene(s.scene, s.input_folder, s.mgf_sides);
+    apply_sky_options(in.scene, s.sky, s.up);
     if (const uint64_t copies = remove_duplicate_polygons(in.scene))
       in.scene.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
     in.views = s.views.empty() ? in.scene.cameras : read_walkthrough(s.views);

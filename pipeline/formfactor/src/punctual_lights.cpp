@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "walkrad/core/sampling.h"
+#include "walkrad/formfactor/sky_light.h"
 
 namespace walkrad {
 
@@ -25,7 +26,7 @@ double range_window(const PunctualLight& light, double r) {
 }
 
 Vec3 punctual_power(const PunctualLight& light) {
-  if (light.type == PunctualLight::Type::directional) return {};  // directional_power
+  if (light.type == PunctualLight::Type::directional || light.type == PunctualLight::Type::sky) return {};  // the scene's
   if (light.type == PunctualLight::Type::point) return light.intensity * (4 * kPi);
   if (light.type == PunctualLight::Type::ies) return light.profile ? light.intensity * light.profile->flux() : Vec3{};
   // ∫ spot dΩ = 2π ∫ spot d(cos θ) over cos θ ∈ [cos outer, 1]; the falloff depends on cos θ alone
@@ -71,12 +72,16 @@ double sun_visibility(const PunctualLight& l, const Vec3& from, const RayScene& 
   return double(open) / kSunRays;
 }
 
-}  // namespace
-
-Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
-                      uint64_t& rays_cast, const Vec3* origin) {
+Vec3 irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
+                uint64_t& rays_cast, const Vec3* origin, const SkyPattern& sky) {
   Vec3 e;
   for (const PunctualLight& l : lights) {
+    if (l.type == PunctualLight::Type::sky) {
+      if (l.sky)
+        e += mul(l.intensity, sky_irradiance(*l.sky, normal, origin ? *origin : x + normal * (rays ? rays->offset() : 0.0), rays, sky,
+                                             rays_cast));
+      continue;
+    }
     if (l.type == PunctualLight::Type::directional) {
       const double cosine = -dot(normal, l.direction);
       if (cosine <= 0) continue;
@@ -100,6 +105,13 @@ Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<Punct
     e += l.intensity * (cosine * falloff / r2);
   }
   return e;
+}
+
+}  // namespace
+
+Vec3 point_irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
+                      uint64_t& rays_cast, const Vec3* origin) {
+  return irradiance(x, normal, lights, rays, rays_cast, origin, kSkyAtPoints);
 }
 
 std::vector<LightSpot> light_spots(const std::vector<PunctualLight>& lights, const Scene& scene, const RayScene& rays,
@@ -139,7 +151,7 @@ DirectIrradiance direct_irradiance(const Polygon& p, const std::vector<PunctualL
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const Vec3 x = sample_polygon(p, (i + 0.5) / n, (j + 0.5) / n);
-      const Vec3 e = point_irradiance(x, normal, lights, rays, rays_cast);
+      const Vec3 e = irradiance(x, normal, lights, rays, rays_cast, nullptr, kSkyOverElements);
       out.mean += e;
       lo = std::min(lo, luminance(e));
       hi = std::max(hi, luminance(e));

@@ -11,6 +11,7 @@
 #include "error_oracle.h"
 
 #include "walkrad/formfactor/punctual_lights.h"
+#include "walkrad/formfactor/sky_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -88,6 +89,7 @@ double ErrorOracle::light_density() const {
     }
   for (const PunctualLight& l : h_.scene().lights)  // at most
     power += l.type == PunctualLight::Type::directional ? luminance(directional_power(l, h_.scene().polygons))
+             : l.type == PunctualLight::Type::sky       ? (l.sky ? luminance(l.intensity) * sky_power(*l.sky, h_.scene().polygons) : 0.0)
                                                         : 4 * kPi * luminance(l.intensity);
   light_density_ = area > 0 ? power / area : 0.0;
   return light_density_;

@@ -287,14 +287,25 @@ double LeafRadiosity::visible_at(const Near& s, const Vec3& x) const {
   return rays->occluded(x + h_[leaf_].normal * rays->offset(), s.target) ? 0.0 : 1.0;
 }
 
+Vec3 LeafRadiosity::ray_origin(const Vec3& x) const {
+  const RayScene* rays = clusters_.rays();
+  if (!rays) return x;
+  const HNode& n = h_[leaf_];
+  Vec3 inward = n.center - x;
+  inward = inward - n.normal * dot(inward, n.normal);
+  const double len = length(inward);
+  return x + (n.normal + (len > 0 ? inward / len : Vec3{})) * rays->offset();
+}
+
 Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   const HNode& n = h_[leaf_];
   if (flat_) {
     if (!lit_sides_) return n.B;
     uint64_t rays = 0;
     const std::vector<PunctualLight>& lights = *clusters_.lights();
-    const Vec3 front = point_irradiance(x, n.normal, lights, clusters_.rays(), rays);
-    const Vec3 back = point_irradiance(x, n.normal * -1.0, lights, clusters_.rays(), rays);
+    const Vec3 origin = ray_origin(x), back_origin = origin - n.normal * (2 * dot(origin - x, n.normal));
+    const Vec3 front = point_irradiance(x, n.normal, lights, clusters_.rays(), rays, &origin);
+    const Vec3 back = point_irradiance(x, n.normal * -1.0, lights, clusters_.rays(), rays, &back_origin);
     const Vec3 b = n.B + mul(n.rho, front - D_front_) + mul(tau_, back - D_back_);
     return {std::max(0.0, b.x), std::max(0.0, b.y), std::max(0.0, b.z)};
   }
@@ -351,7 +362,8 @@ Vec3 LeafRadiosity::at(const Vec3& x, bool gathered) const {
   if (gathered && n.balanced && scalable_row(row)) return n.emission + mul(n.rho, H / row);
   if (gathered) return n.emission + mul(n.rho, leaf_irradiance(n, H, row));
   uint64_t rays = 0;
-  const Vec3 D = clusters_.lights() ? point_irradiance(x, n.normal, *clusters_.lights(), clusters_.rays(), rays) : n.D;
+  const Vec3 origin = ray_origin(x);
+  const Vec3 D = clusters_.lights() ? point_irradiance(x, n.normal, *clusters_.lights(), clusters_.rays(), rays, &origin) : n.D;
   return n.emission + mul(n.rho, leaf_irradiance(n, H, row) + D);
 }
 

@@ -30,8 +30,9 @@ BackLight light_on_back_faces(const Scene& scene, const RayScene& rays) {
   for (size_t l = 0; l < scene.lights.size(); ++l) {
     const PunctualLight& light = scene.lights[l];
     // The sun lights a building from outside, where its faces point out; light it sends through windows
-    // meets the inside's backs only where the rooms face the wrong way, which the lamps inside show.
-    if (light.type == PunctualLight::Type::directional) continue;
+    // meets the inside's backs only where the rooms face the wrong way, which the lamps inside show;
+    // so does the sky's.
+    if (light.type == PunctualLight::Type::directional || light.type == PunctualLight::Type::sky) continue;
     const double cone = light.type == PunctualLight::Type::spot ? light.outer_cone : kPi;
     const double p = 2 * kPi * (1 - std::cos(cone)) * luminance(light.intensity);  // at most (an IES light's peak)
     if (p > 0) lights.push_back({p, -2 - int64_t(l)});

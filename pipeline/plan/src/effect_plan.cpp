@@ -32,7 +32,9 @@ bool reflector_faces_light(const Scene& scene, double tol) {
     if (luminance(scene.materials[p.material].reflectance) <= 0) continue;
     const Vec3 n = polygon_normal(p);
     for (const PunctualLight& l : scene.lights)
-      if (l.type == PunctualLight::Type::directional ? dot(l.direction, n) < 0 : dot(l.position - p.v[0], n) > tol) return true;
+      if (l.type == PunctualLight::Type::sky ||
+          (l.type == PunctualLight::Type::directional ? dot(l.direction, n) < 0 : dot(l.position - p.v[0], n) > tol))
+        return true;
     for (size_t e : emitters) {
       const Polygon& l = scene.polygons[e];
       if (e != i && in_front(p, n, l, tol) && in_front(l, polygon_normal(l), p, tol)) return true;
@@ -227,7 +229,8 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   // A light outside the enclosure (behind a wall's plane) is hidden from the opposite walls by it.
   bool lights_inside = true;
   for (const PunctualLight& l : scene.lights) {
-    if (l.type == PunctualLight::Type::directional) lights_inside = false;  // the sun: outside everything
+    // The sun and the sky: outside everything.
+    if (l.type == PunctualLight::Type::directional || l.type == PunctualLight::Type::sky) lights_inside = false;
     for (size_t i = 0; i < scene.polygons.size() && lights_inside; ++i)
       lights_inside = dot(l.position - scene.polygons[i].v[0], polygon_normal(scene.polygons[i])) >= -tol;
   }
@@ -236,9 +239,13 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.visibility.reason = !convex ? "some polygon lies behind another's plane: occlusion is possible"
                            : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
                                                 : "a convex enclosure with nothing inside: no occlusion possible, no rays";
-  size_t points = 0, spots = 0, suns = 0, luminaires = 0;
+  size_t points = 0, spots = 0, suns = 0, luminaires = 0, skies = 0;
+  std::string sky;
   for (const PunctualLight& l : scene.lights)
-    (l.type == PunctualLight::Type::spot          ? spots
+    if (l.type == PunctualLight::Type::sky && l.sky) sky = sky_description(*l.sky);
+  for (const PunctualLight& l : scene.lights)
+    (l.type == PunctualLight::Type::sky           ? skies
+     : l.type == PunctualLight::Type::spot        ? spots
      : l.type == PunctualLight::Type::ies         ? luminaires
      : l.type == PunctualLight::Type::directional ? suns
                                                   : points) += 1;
@@ -247,7 +254,10 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
                                                 std::to_string(suns) + " directional lights (KHR_lights_punctual), " +
                                                 std::to_string(luminaires) +
                                                 " IES luminaires: shot straight to the elements, a shadow ray per sample" +
-                                                (suns ? " (towards a directional light, one to each of a pattern of points of its disc)" : "")
+                                                (suns ? " (towards a directional light, one to each of a pattern of points of its disc)" : "") +
+                                                (skies ? "; " + sky + " seen through the scene's openings: at each point rays "
+                                                                   "over the hemisphere, denser where what the point sees of the sky changes"
+                                                       : "")
                                           : "no punctual lights";
   plan.importance.on = !views.empty() && !view_independent;
   plan.importance.reason = views.empty() ? "no viewpoints: view-independent refinement (BF oracle)"

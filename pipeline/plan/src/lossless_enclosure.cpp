@@ -85,8 +85,10 @@ std::vector<LosslessEnclosure> enclosures_in(const Scene& scene, const RayScene&
     out.push_back(std::move(e));
   }
   for (size_t l = 0; l < scene.lights.size() && !out.empty(); ++l) {
-    // Infinitely far, the sun is inside no enclosure.
-    if (scene.lights[l].intensity[c] <= 0 || scene.lights[l].type == PunctualLight::Type::directional) continue;
+    // Infinitely far, the sun and the sky are inside no enclosure.
+    if (scene.lights[l].intensity[c] <= 0 || scene.lights[l].type == PunctualLight::Type::directional ||
+        scene.lights[l].type == PunctualLight::Type::sky)
+      continue;
     Rng rng(l, 0x6c697465ull);  // "lite"
     int64_t inside = -2;  // the enclosure every ray met so far; -1: none
     for (int k = 0; k < kEnclosureRays && inside != -1; ++k) {

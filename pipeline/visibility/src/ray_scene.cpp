@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "walkrad/scene/openings.h"
+
 namespace walkrad {
 
 namespace {
@@ -35,7 +37,17 @@ void keep_front_faces(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RayScene::RayScene(const Scene& scene) { build(scene, nullptr); }
+RayScene::RayScene(const Scene& scene) {
+  build(scene, nullptr);
+  const bool sky = std::any_of(scene.lights.begin(), scene.lights.end(), [](const PunctualLight& l) { return l.type == PunctualLight::Type::sky; });
+  if (!sky) return;
+  Scene holes;
+  holes.materials.push_back({"opening", {}, {}});
+  for (const Opening& o : find_openings(scene)) holes.polygons.insert(holes.polygons.end(), o.triangles.begin(), o.triangles.end());
+  openings_ = std::make_unique<Openings>();
+  if (!holes.polygons.empty()) openings_->rays = std::make_unique<RayScene>(holes);
+  openings_->triangles = std::move(holes.polygons);
+}
 
 RayScene::RayScene(const Scene& scene, const std::vector<uint8_t>& exclude) { build(scene, &exclude); }
 

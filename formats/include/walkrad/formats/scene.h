@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "walkrad/formats/ies.h"
+#include "walkrad/formats/sky.h"
 #include "walkrad/formats/vec3.h"
 
 namespace walkrad {
@@ -94,11 +95,13 @@ struct Viewpoint {
 // irradiance, W/m² per channel on a surface facing it (the lux read one for one as W/m²), its light
 // arriving from a disc of `angular_diameter` around −direction (the sun's 0.53°: its shadows' penumbra);
 // position and range mean nothing for it.
+// The sky (sky.h) is a light too: an emitter at infinity, its radiance `sky->at(ω)` times `intensity`
+// (1, 1, 1) from every direction it reaches a point through the scene's openings.
 inline constexpr double kSunDiameter = 0.53 * kPi / 180;  // the sun's, seen from the Earth
 inline constexpr double kMaxAngularDiameter = 0.5;  // radians: a wider source is a sky, not a sun
 
 struct PunctualLight {
-  enum class Type { point, spot, ies, directional };
+  enum class Type { point, spot, ies, directional, sky };
   std::string name;
   Type type = Type::point;
   Vec3 position;
@@ -109,6 +112,7 @@ struct PunctualLight {
   double inner_cone = 0, outer_cone = 0.7853981633974483;  // spot: radians, 0 ≤ inner < outer ≤ π/2
   double angular_diameter = kSunDiameter;                  // directional: radians, 0 (a hard shadow) to kMaxAngularDiameter
   std::shared_ptr<const IesProfile> profile;  // ies: the photometric data (shared, never changed)
+  std::shared_ptr<const Sky> sky;             // sky: its radiance over the directions (shared, never changed)
 };
 
 // `up` made orthogonal to the unit `direction` and unit (a light node's +Y under any transform); the
@@ -129,7 +133,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Polygon> polygons;
   std::vector<Viewpoint> cameras;  // viewpoints found in the scene file itself (glTF camera nodes)
-  std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual (point and spot), EXT_lights_ies, MGF ies
+  std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual, EXT_lights_ies, MGF ies, the sky (sky.h)
+  Vec3 up{0, 1, 0};                   // the zenith, for a sky: glTF's +Y, MGF's +Z
   std::vector<Texture> textures;      // reflectance and emission textures (Material::*_texture)
   uint64_t dropped_degenerate = 0;     // zero-area triangles dropped by the reader
   std::vector<std::string> warnings;  // what the reader changed or ignored, for the user

@@ -45,6 +45,8 @@ struct BakeSettings {
   std::string views;        // walkthrough JSON; empty: the scene's cameras
   std::string input_folder; // where the files the scene refers to may lie; empty: the scene file's folder
   int mgf_sides = 1;        // MGF: the sides of a material that does not state them (1 as RenderPark reads, or 2)
+  std::string sky;          // a sky (sky.h parse_sky's spec) in place of the scene file's; empty: the file's, if any
+  std::string up;           // "x,y,z": the zenith, for a sky; empty: the format's (glTF +Y, MGF +Z)
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   Method method = Method::hierarchical;

@@ -12,6 +12,8 @@
 // share of kSunRays shadow rays, towards a fixed stratified pattern of the sun's disc, that leave the
 // scene unblocked (the penumbra: a uniform disc of the light's angular diameter; the cosine taken at
 // the disc's centre, within (angular radius)²/2 of its mean over the disc).
+// The sky (sky.h) gives what sky_irradiance (sky_light.h) finds through the scene's openings: at points
+// with kSkyAtPoints, at each of an element's stratified points with the coarser kSkyOverElements.
 #pragma once
 
 #include <cstdint>
@@ -35,7 +37,7 @@ double range_window(const PunctualLight& light, double r);
 // What the light radiates, W per channel: 4π I for a point, I ∫ spot dΩ for a spot, I × the
 // profile's flux for a luminaire (the range's window ignored: it depends on what stands where); for a
 // directional light, what falls on the polygons facing it with nothing in the way, Σ E⊥ A max(0, n·ω),
-// which needs the scene: directional_power (punctual_power gives 0 for it).
+// which needs the scene: directional_power (punctual_power gives 0 for it, and for the sky: sky_power).
 Vec3 punctual_power(const PunctualLight& light);
 Vec3 directional_power(const PunctualLight& light, const std::vector<Polygon>& polygons);
 

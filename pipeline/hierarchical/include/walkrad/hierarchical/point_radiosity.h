@@ -133,6 +133,10 @@ class LeafRadiosity {
   };
   // At a gathered point: whether it sees a source its link saw in part (else the link's fraction).
   double visible_at(const Near& s, const Vec3& x) const;
+  // Where the punctual lights' and the sky's rays leave x from: lifted off the leaf and moved towards its
+  // centre (as the final gather's), so that a vertex in a room's corner, on the walls' planes too,
+  // casts no ray that slips behind them.
+  Vec3 ray_origin(const Vec3& x) const;
   const ClusterGather& clusters_;
   const Hierarchy& h_;
   uint32_t leaf_;

@@ -1,7 +1,10 @@
 // A test fixture with its own empty temporary folder, removed afterwards (bakes write there).
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -21,5 +24,15 @@ class TempDirTest : public testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::filesystem::path dir_;
 };
+
+// Every file of bake folder a but its report (which holds times) has the same bytes in b.
+inline void expect_same_bake_files(const std::string& a, const std::string& b) {
+  for (const auto& f : std::filesystem::directory_iterator(a)) {
+    if (f.path().filename() == "report.json") continue;
+    std::ifstream x(f.path(), std::ios::binary), y(std::filesystem::path(b) / f.path().filename(), std::ios::binary);
+    EXPECT_TRUE(y.good()) << f.path().filename() << " missing from " << b;
+    EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(x), {}, std::istreambuf_iterator<char>(y), {})) << f.path();
+  }
+}
 
 }  // namespace walkrad::test

@@ -81,4 +81,24 @@ inline void add_cube(Scene& scene, Vec3 c, double side, uint32_t material = 0) {
   add_cube(scene, c, side, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), material);
 }
 
+// A 6 × 6 × 3 m room, z up, walls and ceiling of material 1 facing in, its floor of material 0 facing
+// up, and one opening: a 2 × 1.2 m window in the wall x = 6, y ∈ [2, 4], z ∈ [1, 2.2] (window_opening()).
+inline Scene window_room(Vec3 floor_rho = {0.5, 0.5, 0.5}, Vec3 wall_rho = {0, 0, 0}) {
+  Scene s;
+  s.up = {0, 0, 1};
+  s.materials.push_back({"floor", floor_rho, {}});
+  s.materials.push_back({"wall", wall_rho, {}});
+  s.polygons.push_back(rect(2, 0, 0, 6, 0, 6, +1, 0));  // floor
+  s.polygons.push_back(rect(2, 3, 0, 6, 0, 6, -1, 1));  // ceiling
+  s.polygons.push_back(rect(0, 0, 0, 6, 0, 3, +1, 1));  // x = 0
+  s.polygons.push_back(rect(1, 0, 0, 3, 0, 6, +1, 1));  // y = 0 (spans z, x)
+  s.polygons.push_back(rect(1, 6, 0, 3, 0, 6, -1, 1));  // y = 6
+  s.polygons.push_back(rect(0, 6, 0, 6, 0, 1, -1, 1));  // x = 6 around the window
+  s.polygons.push_back(rect(0, 6, 0, 6, 2.2, 3, -1, 1));
+  s.polygons.push_back(rect(0, 6, 0, 2, 1, 2.2, -1, 1));
+  s.polygons.push_back(rect(0, 6, 4, 6, 1, 2.2, -1, 1));
+  return s;
+}
+inline Polygon window_opening() { return rect(0, 6, 2, 4, 1, 2.2, -1); }
+
 }  // namespace walkrad::test

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -52,6 +53,15 @@ class RayScene {
   // against float rounding at the scene's scale (docs/numerics.md).
   double offset() const { return offset_; }
 
+  // Where the scene has a sky (sky.h), its openings (openings.h), their triangles in a BVH of their
+  // own: the sky is sampled through them (sky_light.h). nullptr without a sky, and for a scene built
+  // without some of its polygons.
+  struct Openings {
+    std::vector<Polygon> triangles;
+    std::unique_ptr<RayScene> rays;  // hits name indices into triangles
+  };
+  const Openings* openings() const { return openings_.get(); }
+
  private:
   void build(const Scene& scene, const std::vector<uint8_t>* exclude);
   void add_quads(const Scene& scene, const std::vector<uint32_t>& polygons);
@@ -63,6 +73,7 @@ class RayScene {
   double offset_ = 0;
   std::vector<uint32_t> prim_polygon_;  // with excluded polygons: Embree primitive → polygon
   std::vector<Vec3> prim_normal_;       // each primitive's front (counter-clockwise) normal, unnormalised
+  std::unique_ptr<Openings> openings_;
 };
 
 }  // namespace walkrad
