@@ -100,9 +100,10 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
   const auto ext = gm.extensions.find("KHR_materials_emissive_strength");
   if (ext != gm.extensions.end() && ext->second.Has("emissiveStrength"))
     strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
-  // Transmission, read as diffuse: KHR_materials_diffuse_transmission splits the diffuse lobe,
-  // ρ = (1 − f) base colour, τ = f × diffuseTransmissionColorFactor; KHR_materials_transmission (thin
-  // glass, specular) is diffused here, ρ = (1 − t) base colour, τ = t × base colour.
+  // Transmission: KHR_materials_diffuse_transmission splits the diffuse lobe, ρ = (1 − f) base colour,
+  // τ = f × diffuseTransmissionColorFactor. KHR_materials_transmission (thin glass): with roughness 0,
+  // clear glass, its filter t × base colour and its index KHR_materials_ior's (1.5 without), ρ = (1 − t)
+  // base colour; rough, diffused, ρ = (1 − t) base colour, τ = t × base colour.
   const auto number = [&](const tinygltf::Value& v, const char* key, double fallback) {
     return v.Has(key) && v.Get(key).IsNumber() ? v.Get(key).GetNumberAsDouble() : fallback;
   };
@@ -120,7 +121,15 @@ Material convert_material(const tinygltf::Model& m, int index, Scene& scene, con
   } else if (st != gm.extensions.end()) {
     const double t = number(st->second, "transmissionFactor", 0.0);
     if (!(t >= 0 && t <= 1)) throw InputError(file, place + ".extensions.KHR_materials_transmission", "transmissionFactor must lie in [0, 1]");
-    mat.transmittance = mat.reflectance * t;
+    if (gm.pbrMetallicRoughness.roughnessFactor == 0) {
+      mat.clear = mat.reflectance * t;
+      const auto ior = gm.extensions.find("KHR_materials_ior");
+      if (ior != gm.extensions.end()) mat.ior = number(ior->second, "ior", 1.5);
+      if (!(mat.ior >= 1 && mat.ior <= 10))
+        throw InputError(file, place + ".extensions.KHR_materials_ior", "ior must lie in [1, 10] for glass");
+    } else {
+      mat.transmittance = mat.reflectance * t;
+    }
     mat.reflectance = mat.reflectance * (1 - t);
   }
   const auto& ef = gm.emissiveFactor;

@@ -484,7 +484,14 @@ class Reader {
     }
     if (m.rd >= 1) absorbs_nothing_.insert(mat.name);
     if (m.rs > 0) ignored_["specular reflectance (rs)"].insert(mat.name);
-    if (m.ts > 0) ignored_["specular transmittance (ts)"].insert(mat.name);
+    // ts with roughness 0: clear glass of the material's index (ir; 1.5 where not given), the rest of
+    // specular transmission is not simulated.
+    if (m.ts > 0 && m.ts_a == 0) {
+      mat.clear = mgf::linear_srgb(m.ts_c, m.ts, &desaturated_r);
+      mat.ior = m.nr > 1 ? m.nr : 1.5;
+    } else if (m.ts > 0) {
+      ignored_["rough specular transmittance (ts with roughness > 0)"].insert(mat.name);
+    }
     mat.transmittance = mgf::linear_srgb(m.td_c, m.td, &desaturated_r);
     if (max_component(mat.reflectance + mat.transmittance) > 1 + 1e-9)
       fail("material '" + mat.name + "': rd + td exceed 1 (a surface cannot send on more light than it receives)");

@@ -55,6 +55,17 @@ tinygltf::Material material(const Material& m) {
         tinygltf::Value(m.transmittance.x / f), tinygltf::Value(m.transmittance.y / f), tinygltf::Value(m.transmittance.z / f)});
     g.extensions["KHR_materials_diffuse_transmission"] = tinygltf::Value(ext);
   }
+  if (m.is_clear_glass()) {  // KHR_materials_transmission, roughness 0: filter t × base, ρ = (1 − t) × base
+    const Vec3 base = m.reflectance + m.clear;
+    const double t = max_component(base) > 0 ? max_component(m.clear) / max_component(base) : 0.0;
+    g.pbrMetallicRoughness.baseColorFactor = {std::min(base.x, 1.0), std::min(base.y, 1.0), std::min(base.z, 1.0), 1.0};
+    g.pbrMetallicRoughness.roughnessFactor = 0.0;
+    tinygltf::Value::Object transmission, ior;
+    transmission["transmissionFactor"] = tinygltf::Value(t);
+    g.extensions["KHR_materials_transmission"] = tinygltf::Value(transmission);
+    ior["ior"] = tinygltf::Value(m.ior);
+    g.extensions["KHR_materials_ior"] = tinygltf::Value(ior);
+  }
   return g;
 }
 
@@ -103,7 +114,11 @@ void add_meshes(const Scene& scene, tinygltf::Model& model, tinygltf::Scene& gsc
     std::vector<const Polygon*> quads;
     std::vector<std::vector<const Polygon*>> chains;
     Bounds bounds;
-    for (const Polygon& p : scene.polygons) {
+    std::vector<const Polygon*> all;  // the panes of clear glass a bake took out too (Scene::glass)
+    for (const Polygon& p : scene.polygons) all.push_back(&p);
+    for (const Polygon& p : scene.glass) all.push_back(&p);
+    for (const Polygon* polygon : all) {
+      const Polygon& p = *polygon;
       if (p.material != mi) continue;
       for (int k = 0; k < p.count; ++k) bounds.extend(p.v[k]);
       if (p.count == 4) {

@@ -321,6 +321,28 @@ TEST_F(BadInput, SkiesInGltfAndOnTheCommandLine) {
   EXPECT_EQ(q.lights[0].sky->radiance, Vec3(4, 4, 4));
 }
 
+// Clear glass: KHR_materials_transmission with roughness 0 reads as a pane of KHR_materials_ior's index;
+// an index glass cannot have is refused.
+TEST_F(BadInput, ClearGlassInGltf) {
+  nlohmann::json g = quad_gltf();
+  g["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior"};
+  g["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"roughnessFactor", 0}}},
+                     {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}}};
+  for (auto& m : g["meshes"]) for (auto& p : m["primitives"]) p["material"] = 0;
+  const Scene s = read_gltf(write("glass.gltf", g));
+  ASSERT_FALSE(s.materials.empty());
+  EXPECT_TRUE(s.materials[0].is_clear_glass());
+  EXPECT_NEAR(s.materials[0].clear.x, 0.9, 1e-12);
+  EXPECT_NEAR(s.materials[0].reflectance.x, 0.1, 1e-12);
+  EXPECT_EQ(s.materials[0].ior, 1.33);
+  for (const double ior : {0.5, 20.0}) {
+    nlohmann::json bad = g;
+    bad["materials"][0]["extensions"]["KHR_materials_ior"]["ior"] = ior;
+    const std::string b = write("bad-glass.gltf", bad);
+    expect_refused([&] { read_gltf(b); }, b, kExitBadInput, {"KHR_materials_ior", "ior must lie in [1, 10]"});
+  }
+}
+
 // Devices are refused outside the input folder (input_folder_test.cpp) and, where the folder holds them
 // ("/" here), as not regular files: a read from one could block or never end.
 TEST_F(BadInput, DevicesAreNotFiles) {

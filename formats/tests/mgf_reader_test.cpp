@@ -498,7 +498,11 @@ TEST(MgfReader, MaterialsTemplatesRedefinitionsAndSides) {
   expect_near(polygon_normal(s.polygons[2]), {0, 0, -1});
   EXPECT_EQ(stats.back_polygons, 1u);
   EXPECT_TRUE(has_warning(s, "specular reflectance (rs) ignored in 1 materials (plain)"));
-  EXPECT_TRUE(has_warning(s, "specular transmittance (ts) ignored"));
+  // ts with roughness 0: clear glass, of the ir index.
+  EXPECT_TRUE(s.materials[3].is_clear_glass());
+  EXPECT_NEAR(luminance(s.materials[3].clear), 0.1, 1e-3);
+  EXPECT_NEAR(s.materials[3].ior, 1.5, 1e-12);
+  EXPECT_FALSE(has_warning(s, "specular transmittance"));
   EXPECT_NEAR(s.materials[3].transmittance.x, 0.1, 1e-3);  // td: diffuse transmission (read, not ignored)
   EXPECT_FALSE(has_warning(s, "diffuse transmittance (td) ignored"));
   EXPECT_TRUE(has_warning(s, "1 materials do not state 'sides'"));

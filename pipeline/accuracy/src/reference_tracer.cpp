@@ -134,7 +134,7 @@ Vec3 ReferenceTracer::direct(const Vec3& x, const Vec3& n, const Choice& choice,
   if (rays_.occluded(x + n * off, y + ny * off)) return {};
   // E/π is the emitted radiance; y's pdf is pk / area, in solid angle pk / area · r² / cos θy.
   const double light_pdf = pk / emitter_area_[k] * r2 / cy;
-  return scene_.materials[e.material].emission *
+  return mul(scene_.materials[e.material].emission, rays_.transmittance(x + n * off, y + ny * off)) *
          (cx / (kPi * light_pdf) * power_heuristic(light_pdf, cx / kPi));
 }
 
@@ -163,7 +163,8 @@ void ReferenceTracer::scatter(const Material& m, Vec3& n, Vec3& beta, Rng& rng) 
 // angular diameter: one direction ω drawn uniformly over that cap, E⊥ (ω·n) if its ray leaves the scene
 // (the disc's radiance E⊥ / Ω times Ω: the estimate's mean is E⊥ over the disc's mean of ω·n). The sky:
 // one cosine-weighted direction ω, π L(ω) if its ray leaves the scene (pdf cos θ / π: the mean is
-// ∫ L V cos θ dω); paths end where they leave, so no light is counted twice.
+// ∫ L V cos θ dω); paths end where they leave, so no light is counted twice. Every ray that crosses
+// clear glass (Scene::glass) carries the panes' transmittance (RayScene::transmittance).
 Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t& rays) const {
   Vec3 E;
   const double off = rays_.offset();
@@ -176,7 +177,7 @@ Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t&
       if (max_component(L) <= 0) continue;
       ++rays;
       if (rays_.occluded(x + n * off, x + w * (2e6 * off))) continue;
-      E += mul(l.intensity, L) * kPi;
+      E += mul(mul(l.intensity, L), rays_.transmittance(x + n * off, x + w * (2e6 * off))) * kPi;
       continue;
     }
     if (l.type == PunctualLight::Type::directional) {
@@ -186,7 +187,7 @@ Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t&
       if (c <= 0) continue;
       ++rays;
       if (rays_.occluded(x + n * off, x + w * (2e6 * off))) continue;  // 2·10⁶ offsets: twice the diagonal
-      E += l.intensity * c;
+      E += mul(l.intensity, rays_.transmittance(x + n * off, x + w * (2e6 * off))) * c;
       continue;
     }
     const Vec3 d = l.position - x;
@@ -199,7 +200,7 @@ Vec3 ReferenceTracer::punctual(const Vec3& x, const Vec3& n, Rng& rng, uint64_t&
     if (max_component(I) <= 0) continue;
     ++rays;
     if (rays_.occluded(x + n * off, l.position)) continue;
-    E += I * (c / r2);
+    E += mul(I, rays_.transmittance(x + n * off, l.position)) * (c / r2);
   }
   return E;
 }
@@ -231,6 +232,7 @@ RadiosityEstimate ReferenceTracer::estimate(const SurfacePoint& point, int sampl
       ++rays;
       const RayScene::Hit hit = rays_.intersect(x + n * off, dir);
       if (!hit.hit) break;
+      beta = mul(beta, rays_.transmittance(x + n * off, hit.position));  // clear glass on the way
       const Vec3& nq = normals_[hit.polygon];
       const Material& mq = scene_.materials[scene_.polygons[hit.polygon].material];
       const bool back = dot(nq, dir) >= 0;

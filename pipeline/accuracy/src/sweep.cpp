@@ -369,6 +369,7 @@ SweepSummary run_sweep(const SweepSettings& s) {
   if (s.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   Scene scene = read_scene(s.scene, s.input_folder, s.mgf_sides);
   remove_duplicate_polygons(scene);
+  separate_clear_glass(scene);
   const std::vector<Viewpoint> views = s.views.empty() ? scene.cameras : read_walkthrough(s.views);
   if (views.empty())
     throw InputError(s.views.empty() ? s.scene : s.views, "", "no viewpoints: the sweep measures error where a walkthrough looks (give --views)");

@@ -17,7 +17,7 @@ namespace {
 // Every field, one by one: the structs below hold strings and lists. A field added to one of them must
 // be added here; the size checks fail until it is.
 static_assert(std::is_trivially_copyable_v<Polygon> && std::is_trivially_copyable_v<Vec3>);
-static_assert(sizeof(Material) == sizeof(std::string) + 3 * sizeof(Vec3) + 8, "Material changed: see bake_inputs.cpp");
+static_assert(sizeof(Material) == sizeof(std::string) + 4 * sizeof(Vec3) + 8 + 8, "Material changed: see bake_inputs.cpp");
 static_assert(sizeof(Viewpoint) == sizeof(std::string) + 3 * sizeof(Vec3) + 16, "Viewpoint changed: see bake_inputs.cpp");
 static_assert(sizeof(PunctualLight) == sizeof(std::string) + 8 + 4 * sizeof(Vec3) + 32 + 2 * sizeof(std::shared_ptr<int>),
               "PunctualLight changed: see bake_inputs.cpp");
@@ -30,6 +30,7 @@ static_assert(sizeof(Texture) == 8 + sizeof(std::vector<float>) + sizeof(Vec3), 
 template <class Io, class M>
 void each(Io&& io, M& m) {  // Material
   io(m.reflectance), io(m.emission), io(m.transmittance), io(m.reflectance_texture), io(m.emission_texture);
+  io(m.clear), io(m.ior);
 }
 template <class Io, class V>  // Viewpoint, const or not
 void each_view(Io&& io, V& v) { io(v.position), io(v.forward), io(v.up), io(v.yfov), io(v.aspect); }
@@ -62,6 +63,7 @@ std::vector<uint8_t> scene_to_bytes(const Scene& scene, const std::vector<Viewpo
     each([&](const auto& x) { out.put(x); }, m);
   }
   out.put_vector(scene.polygons);
+  out.put_vector(scene.glass);
   put_views(out, scene.cameras);
   put_views(out, views);
   out.put(scene.up);
@@ -106,6 +108,7 @@ void scene_from_bytes(const std::vector<uint8_t>& bytes, Scene& scene, std::vect
     each(get, m);
   }
   in.get_vector(scene.polygons);
+  in.get_vector(scene.glass);
   get_views(in, scene.cameras);
   get_views(in, views);
   get(scene.up);
@@ -147,6 +150,7 @@ BakeInputs read_bake_inputs(const BakeSettings& s) {
     apply_sky_options(in.scene, s.sky, s.up);
     if (const uint64_t copies = remove_duplicate_polygons(in.scene))
       in.scene.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
+    separate_clear_glass(in.scene);
     in.views = s.views.empty() ? in.scene.cameras : read_walkthrough(s.views);
     in.scene_hash = hash_file(s.scene);
     in.views_hash = s.views.empty() ? "" : hash_file(s.views);

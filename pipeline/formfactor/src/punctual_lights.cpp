@@ -51,25 +51,28 @@ Vec3 directional_power(const PunctualLight& light, const std::vector<Polygon>& p
 
 namespace {
 
-// The share of the sun's disc seen from `from`: kSunRays rays towards a sunflower pattern of the disc
-// (equal solid angles, the golden angle between neighbours), each to twice the scene's diagonal (2·10⁶
-// ray offsets, RayScene::offset): past the scene from any point in it.
-double sun_visibility(const PunctualLight& l, const Vec3& from, const RayScene& rays, uint64_t& rays_cast) {
+// What of the sun's disc reaches `from`, per channel: kSunRays rays towards a sunflower pattern of the
+// disc (equal solid angles, the golden angle between neighbours), each to twice the scene's diagonal
+// (2·10⁶ ray offsets, RayScene::offset): past the scene from any point in it; through clear glass, each
+// ray's share times the panes' transmittance.
+Vec3 sun_visibility(const PunctualLight& l, const Vec3& from, const RayScene& rays, uint64_t& rays_cast) {
   const Vec3 w = -l.direction;
   const double far = 2e6 * rays.offset();
+  const auto seen = [&](const Vec3& d) {
+    return rays.occluded(from, from + d * far) ? Vec3{} : rays.transmittance(from, from + d * far);
+  };
   if (l.angular_diameter <= 0) {
     ++rays_cast;
-    return rays.occluded(from, from + w * far) ? 0.0 : 1.0;
+    return seen(w);
   }
   constexpr double kGolden = 0.38196601125010515;  // (3 − √5) / 2 of a turn
-  int open = 0;
+  Vec3 open;
   for (int k = 0; k < kSunRays; ++k) {
     const double v = k * kGolden;
-    const Vec3 d = cap_direction(w, l.angular_diameter / 2, (k + 0.5) / kSunRays, v - std::floor(v));
-    open += rays.occluded(from, from + d * far) ? 0 : 1;
+    open += seen(cap_direction(w, l.angular_diameter / 2, (k + 0.5) / kSunRays, v - std::floor(v)));
   }
   rays_cast += kSunRays;
-  return double(open) / kSunRays;
+  return open / double(kSunRays);
 }
 
 Vec3 irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLight>& lights, const RayScene* rays,
@@ -85,8 +88,8 @@ Vec3 irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLig
     if (l.type == PunctualLight::Type::directional) {
       const double cosine = -dot(normal, l.direction);
       if (cosine <= 0) continue;
-      const double seen = rays ? sun_visibility(l, origin ? *origin : x + normal * rays->offset(), *rays, rays_cast) : 1.0;
-      e += l.intensity * (cosine * seen);
+      const Vec3 seen = rays ? sun_visibility(l, origin ? *origin : x + normal * rays->offset(), *rays, rays_cast) : Vec3(1, 1, 1);
+      e += mul(l.intensity, seen) * cosine;
       continue;
     }
     const Vec3 d = l.position - x;
@@ -98,11 +101,14 @@ Vec3 irradiance(const Vec3& x, const Vec3& normal, const std::vector<PunctualLig
     if (cosine <= 0) continue;
     const double falloff = light_distribution(l, -w) * range_window(l, r);
     if (falloff <= 0) continue;
+    Vec3 through(1, 1, 1);
     if (rays) {
       ++rays_cast;
-      if (rays->occluded(origin ? *origin : x + normal * rays->offset(), l.position)) continue;
+      const Vec3 from = origin ? *origin : x + normal * rays->offset();
+      if (rays->occluded(from, l.position)) continue;
+      through = rays->transmittance(from, l.position);
     }
-    e += l.intensity * (cosine * falloff / r2);
+    e += mul(l.intensity, through) * (cosine * falloff / r2);
   }
   return e;
 }

@@ -20,6 +20,7 @@
 #include "walkrad/formats/scene_writer.h"
 #include "walkrad/formfactor/form_factor.h"
 #include "walkrad/formfactor/punctual_lights.h"
+#include "walkrad/testing/floor_check.h"
 #include "walkrad/testing/temp_dir_test.h"
 #include "walkrad/testing/test_scenes.h"
 
@@ -193,27 +194,11 @@ TEST_F(SkyFile, TheUniformSkyThroughAWindowInABake) {
   std::ifstream in(b.output + "/report.json");
   const nlohmann::json r = nlohmann::json::parse(in);
   EXPECT_NE(r["effects"]["punctual"]["reason"].get<std::string>().find("a uniform sky"), std::string::npos);
-  // A vertex shows the solution read a little way into each face around it (surface_mesher.cpp, kInward:
-  // 5% of the way to the face's centre), which at the far corners, where the floor's leaves are large, is
-  // a few centimetres in: the exact value is taken over the first 2% of the way to the room's centre.
-  const ChunkMesh mesh = read_bake_mesh(b.output);
+  // A vertex shows the solution read a little way into each face around it: at the far corners, where the
+  // floor's leaves are large, a few centimetres in (test::floor_range_near).
   int seen = 0;
-  double worst = 0;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const Vec3 x(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
-    if (std::fabs(x.z) > 1e-6 || mesh.normals[3 * v + 2] < 0.9) continue;
-    double lo = INFINITY, hi = 0;
-    for (int k = 0; k <= 8; ++k) {
-      const double e = 0.5 * kL * kPi * point_to_polygon(x + (Vec3(3, 3, 0) - x) * (0.02 * k / 8), kUp, kWindow);
-      lo = std::min(lo, e), hi = std::max(hi, e);
-    }
-    if (lo <= 0) continue;  // the floor's edge under the window: the window in its plane
-    ++seen;
-    const double shown = mesh.radiosity[3 * v];
-    const double off = shown < lo ? (lo - shown) / lo : shown > hi ? (shown - hi) / hi : 0.0;
-    worst = std::max(worst, off);
-    EXPECT_LE(off, 0.02) << "at " << x.x << ", " << x.y << ": " << shown << " against " << lo << " to " << hi;
-  }
+  const double worst = test::expect_floor_within(
+      read_bake_mesh(b.output), [](const Vec3& y) { return 0.5 * kL * kPi * point_to_polygon(y, kUp, kWindow); }, 0.02, seen);
   EXPECT_GT(seen, 20);
   std::printf("%d floor vertices, worst %.3f%%\n", seen, 100 * worst);
   BakeSettings one = b;

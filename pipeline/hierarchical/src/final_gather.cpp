@@ -174,7 +174,11 @@ double DirectGather::visible_fraction(const Vec3& x, const Vec3& n, const Vec3& 
     rays_->occluded(segments.data(), size_t(count + corners), blocked.data());
     rays_cast += uint64_t(count + corners);
     for (int k = 0; k < count; ++k) {
-      seen += blocked[size_t(k)] ? 0.0 : kernel[size_t(k)];
+      // Through clear glass, the panes' transmittance by luminance (the emitter's light is one colour here).
+      const double glass = blocked[size_t(k)] || !rays_->has_glass()
+                               ? 1.0
+                               : luminance(rays_->transmittance(segments[size_t(k)].from, segments[size_t(k)].to));
+      seen += blocked[size_t(k)] ? 0.0 : kernel[size_t(k)] * glass;
       total += kernel[size_t(k)];
       arrived += !blocked[size_t(k)];
     }

@@ -86,6 +86,11 @@ void LinkEvaluator::visibility(Pending& p, const std::vector<RayScene::Segment>&
       if (visible[k] > 0) visible[k] *= s_.volumes->grid->transmittance(segments[k].from, segments[k].to);
     p.grid_segments = segments.size();
   }
+  // Clear glass on the way (a link carries one form factor: the panes' transmittance by luminance,
+  // exact for neutral glass). Not in the shafts' candidates, so asked of every segment.
+  if (rays_.has_glass())
+    for (size_t k = 0; k < segments.size(); ++k)
+      if (visible[k] > 0) visible[k] *= luminance(rays_.transmittance(segments[k].from, segments[k].to));
 }
 
 namespace {

@@ -284,7 +284,8 @@ void LeafRadiosity::near_parts(uint32_t node, const Vec3& x, const Vec3& normal,
 double LeafRadiosity::visible_at(const Near& s, const Vec3& x) const {
   const RayScene* rays = clusters_.rays();
   if (!rays || s.visible <= 0 || s.visible > kWhole) return s.visible;
-  return rays->occluded(x + h_[leaf_].normal * rays->offset(), s.target) ? 0.0 : 1.0;
+  const Vec3 from = x + h_[leaf_].normal * rays->offset();
+  return rays->occluded(from, s.target) ? 0.0 : rays->has_glass() ? luminance(rays->transmittance(from, s.target)) : 1.0;
 }
 
 Vec3 LeafRadiosity::ray_origin(const Vec3& x) const {

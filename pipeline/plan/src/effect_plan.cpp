@@ -427,6 +427,14 @@ Effect plan_transmission(const Scene& scene, Method method, const std::map<std::
              : method != Method::hierarchical
                  ? std::to_string(count) + " polygons transmit, but the classic method does not simulate transmission (use the hierarchical one)"
                  : std::to_string(count) + " polygons transmit (diffuse transmission): each gets a back-facing twin that passes light through";
+  if (!scene.glass.empty()) {
+    double lo = INFINITY, hi = 0;
+    for (const Polygon& p : scene.glass) lo = std::min(lo, scene.materials[p.material].ior), hi = std::max(hi, scene.materials[p.material].ior);
+    char index[64];
+    std::snprintf(index, sizeof index, lo == hi ? "%g" : "%g to %g", lo, hi);
+    e.reason += "; " + std::to_string(scene.glass.size()) + " polygons of clear glass (index " + index +
+                "): rays cross them with a thin pane's Fresnel transmittance times its filter, and what they reflect is dropped";
+  }
   apply_override(e, "transmission", overrides);
   if (e.on && (count == 0 || method != Method::hierarchical))
     throw InputError("--effect", "transmission", count == 0 ? "no material transmits" : "the classic method does not simulate transmission",

@@ -36,4 +36,20 @@ uint64_t remove_duplicate_polygons(Scene& scene) {
   return dropped;
 }
 
+uint64_t separate_clear_glass(Scene& scene) {
+  std::vector<Polygon> kept;
+  kept.reserve(scene.polygons.size());
+  uint64_t moved = 0;
+  for (const Polygon& p : scene.polygons) {
+    if (scene.materials[p.material].is_clear_glass()) {
+      scene.glass.push_back(p);
+      ++moved;
+    } else {
+      kept.push_back(p);
+    }
+  }
+  if (moved) scene.polygons.swap(kept);
+  return moved;
+}
+
 }  // namespace walkrad

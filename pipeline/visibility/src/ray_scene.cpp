@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "walkrad/core/fresnel.h"
 #include "walkrad/scene/openings.h"
 
 namespace walkrad {
@@ -39,6 +40,20 @@ void keep_front_faces(const RTCFilterFunctionNArguments* args) {
 
 RayScene::RayScene(const Scene& scene) {
   build(scene, nullptr);
+  if (!scene.glass.empty()) {
+    Scene panes;
+    panes.materials.push_back({"glass", {}, {}});
+    panes.polygons = scene.glass;
+    for (Polygon& p : panes.polygons) p.material = 0;
+    glass_ = std::make_unique<Glass>();
+    glass_->rays = std::make_unique<RayScene>(panes);
+    for (const Polygon& p : scene.glass) {
+      const Material& m = scene.materials[p.material];
+      glass_->filter.push_back(m.clear);
+      glass_->normal.push_back(polygon_normal(p));
+      glass_->ior.push_back(m.ior);
+    }
+  }
   const bool sky = std::any_of(scene.lights.begin(), scene.lights.end(), [](const PunctualLight& l) { return l.type == PunctualLight::Type::sky; });
   if (!sky) return;
   Scene holes;
@@ -180,6 +195,25 @@ RayScene::Hit RayScene::intersect(const Vec3& origin, const Vec3& direction) con
   h.polygon = prim_polygon_.empty() ? rh.hit.primID : prim_polygon_[rh.hit.primID];
   h.position = origin + direction * double(rh.ray.tfar);
   return h;
+}
+
+Vec3 RayScene::transmittance(const Vec3& from, const Vec3& to) const {
+  Vec3 t(1, 1, 1);
+  if (!glass_) return t;
+  const Vec3 d = to - from;
+  const double length2 = dot(d, d);
+  if (!(length2 > 0)) return t;
+  const Vec3 unit = d / std::sqrt(length2);
+  const double step = glass_->rays->offset();
+  Vec3 at = from;
+  for (int crossed = 0; crossed < 64; ++crossed) {  // a stack of 64 panes lets nothing through anyway
+    const Hit h = glass_->rays->intersect(at, d);
+    if (!h.hit || dot(h.position - from, d) >= length2) break;
+    const uint32_t k = h.polygon;
+    t = mul(t, glass_->filter[k] * pane_transmittance(dot(unit, glass_->normal[k]), glass_->ior[k]));
+    at = h.position + unit * step;
+  }
+  return t;
 }
 
 }  // namespace walkrad

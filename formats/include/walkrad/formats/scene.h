@@ -28,8 +28,14 @@ struct Material {
   // values above are already the texture's average times the factor; where a polygon has texture
   // coordinates, elements take the texture's mean over their own area instead (texture.h).
   int32_t reflectance_texture = -1, emission_texture = -1;
+  // Clear glass: a thin pane whose transmission has no roughness passes light straight through, times
+  // this filter (per channel) and the Fresnel transmittance of a pane of index `ior` for the angle
+  // (clear_glass.h). The bake takes such polygons out of the solve (Scene::glass): rays cross them.
+  Vec3 clear = {};
+  double ior = 1.5;
   bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
   bool transmits() const { return transmittance.x > 0 || transmittance.y > 0 || transmittance.z > 0; }
+  bool is_clear_glass() const { return clear.x > 0 || clear.y > 0 || clear.z > 0; }
 };
 
 // A planar, convex polygon with 3 or 4 vertices, counter-clockwise seen from its front (the side
@@ -134,6 +140,7 @@ struct Scene {
   std::vector<Polygon> polygons;
   std::vector<Viewpoint> cameras;  // viewpoints found in the scene file itself (glTF camera nodes)
   std::vector<PunctualLight> lights;  // glTF KHR_lights_punctual, EXT_lights_ies, MGF ies, the sky (sky.h)
+  std::vector<Polygon> glass;         // clear-glass panes taken out of `polygons` (separate_clear_glass): rays cross them
   Vec3 up{0, 1, 0};                   // the zenith, for a sky: glTF's +Y, MGF's +Z
   std::vector<Texture> textures;      // reflectance and emission textures (Material::*_texture)
   uint64_t dropped_degenerate = 0;     // zero-area triangles dropped by the reader

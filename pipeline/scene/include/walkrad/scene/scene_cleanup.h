@@ -13,4 +13,9 @@ namespace walkrad {
 // in any order, with the same facing); returns how many were dropped.
 uint64_t remove_duplicate_polygons(Scene& scene);
 
+// Moves the polygons of clear glass (Material::is_clear_glass) from scene.polygons to scene.glass, in
+// their order: they take no part in the solve, and rays cross them with the pane's transmittance
+// (RayScene::transmittance). Returns how many moved.
+uint64_t separate_clear_glass(Scene& scene);
+
 }  // namespace walkrad

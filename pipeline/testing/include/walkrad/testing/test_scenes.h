@@ -1,6 +1,7 @@
 // Small generated scenes with exact answers, shared by the pipeline's tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -100,5 +101,21 @@ inline Scene window_room(Vec3 floor_rho = {0.5, 0.5, 0.5}, Vec3 wall_rho = {0, 0
   return s;
 }
 inline Polygon window_opening() { return rect(0, 6, 2, 4, 1, 2.2, -1); }
+
+// What a bake's floor vertex at x may show of the exact value f: a vertex shows the solution read a
+// little way into each face around it (surface_mesher.cpp, kInward: 5% of the way to the face's centre),
+// so the range of f over x and 8 points around it, 2% of x's distance to the room's centre away.
+template <class F>
+std::pair<double, double> floor_range_near(const Vec3& x, F f) {
+  const double radius = 0.02 * length(Vec3(3, 3, 0) - x);
+  double lo = f(x), hi = lo;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 y = x + Vec3(std::cos(k * 3.141592653589793 / 4), std::sin(k * 3.141592653589793 / 4), 0) * radius;
+    if (y.x < 0 || y.x > 6 || y.y < 0 || y.y > 6) continue;
+    const double v = f(y);
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  return {lo, hi};
+}
 
 }  // namespace walkrad::test

@@ -62,6 +62,12 @@ class RayScene {
   };
   const Openings* openings() const { return openings_.get(); }
 
+  // Clear glass (Scene::glass, not in the BVH above: it blocks nothing): the product, per channel, of
+  // the panes' transmittance along the segment from → to, each its material's filter times
+  // pane_transmittance (fresnel.h) at the angle the segment crosses it; (1, 1, 1) where it crosses none.
+  Vec3 transmittance(const Vec3& from, const Vec3& to) const;
+  bool has_glass() const { return glass_ != nullptr; }
+
  private:
   void build(const Scene& scene, const std::vector<uint8_t>* exclude);
   void add_quads(const Scene& scene, const std::vector<uint32_t>& polygons);
@@ -74,6 +80,12 @@ class RayScene {
   std::vector<uint32_t> prim_polygon_;  // with excluded polygons: Embree primitive → polygon
   std::vector<Vec3> prim_normal_;       // each primitive's front (counter-clockwise) normal, unnormalised
   std::unique_ptr<Openings> openings_;
+  struct Glass {
+    std::unique_ptr<RayScene> rays;  // the panes, hits naming their index
+    std::vector<Vec3> filter, normal;
+    std::vector<double> ior;
+  };
+  std::unique_ptr<Glass> glass_;
 };
 
 }  // namespace walkrad
