@@ -60,7 +60,7 @@ Vec3 parse_radiance(const std::string& text, const std::string& where, const std
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x) || x < 0 || x > kMaxSkyRadiance)
-      refuse(where, place, what + " '" + item + "' is not a number from 0 to 1e9 W/(m²·sr)", code);
+      refuse(where, place, what + " '" + item + "' is not a number from 0 to 1e9", code);
     v.push_back(x);
     at = comma + 1;
   }
@@ -207,7 +207,7 @@ std::string sky_description(const Sky& sky) {
   return {};
 }
 
-void apply_sky_options(Scene& scene, const std::string& sky, const std::string& up) {
+void apply_sky_options(Scene& scene, const std::string& sky, const std::string& up, const std::string& sun) {
   if (!up.empty()) {
     double d[3];
     char tail = 0;
@@ -215,6 +215,21 @@ void apply_sky_options(Scene& scene, const std::string& sky, const std::string& 
         !(length(Vec3(d[0], d[1], d[2])) > 0))
       throw InputError("--up", up, "expected a direction x,y,z", kExitBadArguments);
     scene.up = normalize(Vec3(d[0], d[1], d[2]));  // a glTF file's own sky keeps its zenith
+  }
+  if (!sun.empty()) {
+    const size_t at = sun.find('@');
+    if (at == std::string::npos) throw InputError("--sun", sun, "expected E@x,y,z: the irradiance, then the direction towards the sun", kExitBadArguments);
+    PunctualLight l;
+    l.name = "sun";
+    l.type = PunctualLight::Type::directional;
+    l.intensity = parse_radiance(sun.substr(0, at), "--sun", sun, kExitBadArguments, "the irradiance");
+    double d[3];
+    char tail = 0;
+    if (std::sscanf(sun.c_str() + at + 1, "%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &tail) != 3 || !is_finite(Vec3(d[0], d[1], d[2])) ||
+        !(length(Vec3(d[0], d[1], d[2])) > 0))
+      throw InputError("--sun", sun, "the direction towards the sun is not three numbers x,y,z", kExitBadArguments);
+    l.direction = -normalize(Vec3(d[0], d[1], d[2]));
+    scene.lights.push_back(std::move(l));
   }
   if (!sky.empty()) set_sky(scene, parse_sky(sky, "--sky", sky, scene.up, scene.lights));
 }

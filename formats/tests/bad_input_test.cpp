@@ -319,6 +319,18 @@ TEST_F(BadInput, SkiesInGltfAndOnTheCommandLine) {
   apply_sky_options(q, "uniform:4", "");  // replaces it
   ASSERT_EQ(q.lights.size(), 1u);
   EXPECT_EQ(q.lights[0].sky->radiance, Vec3(4, 4, 4));
+  // An MGF scene (its zenith +Z) takes the sun and the sky from the command line; the clear sky follows the sun.
+  const std::string m = write("floor.mgf", std::string("m grey =\n rd 0.5\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 1 0\nf a b c\n"));
+  Scene day = read_mgf(m);
+  apply_sky_options(day, "cie-clear:3000", "", "50000,48000,45000@0.5,0.5,0.7");
+  ASSERT_EQ(day.lights.size(), 2u);
+  EXPECT_EQ(day.lights[0].type, PunctualLight::Type::directional);
+  EXPECT_EQ(day.lights[0].intensity, Vec3(50000, 48000, 45000));
+  EXPECT_LT(length(day.lights[0].direction + normalize(Vec3(0.5, 0.5, 0.7))), 1e-12);
+  EXPECT_EQ(day.lights[1].sky->up, Vec3(0, 0, 1));
+  EXPECT_LT(length(day.lights[1].sky->sun - normalize(Vec3(0.5, 0.5, 0.7))), 1e-12);
+  for (const std::string sun : {"50000", "50000@1,2", "-5@0,0,1", "5@0,0,0"})
+    expect_refused([&] { apply_sky_options(day, "", "", sun); }, "--sun", kExitBadArguments, {});
 }
 
 // Clear glass: KHR_materials_transmission with roughness 0 reads as a pane of KHR_materials_ior's index;

@@ -28,6 +28,9 @@ void add_bake(CLI::App& app, BakeCommand& c) {
                     "W/(m²·sr), one value or R,G,B; the sun's direction, else the scene's directional light) or FILE.hdr "
                     "(an equirectangular radiance map)");
   c.app->add_option("--up", c.bs.up, "x,y,z: the sky's zenith (default: +Y for glTF, +Z for MGF)");
+  c.app->add_option("--sun", c.bs.sun,
+                    "E@x,y,z: add the sun, a directional light of irradiance E (W/m², one value or R,G,B) from towards x,y,z "
+                    "(for scenes whose format has none: MGF)");
   c.app->add_option("-o,--output", c.bs.output, "output folder (default: <scene name>.bake)");
   c.app->add_option("--method", c.method, "solver: hierarchical (with importance when there are viewpoints) or classic")
       ->capture_default_str();
@@ -48,7 +51,7 @@ void add_bake(CLI::App& app, BakeCommand& c) {
       ->check(CLI::Range(2, 4096))->capture_default_str();
   c.app->add_flag("--view-independent", c.bs.view_independent,
                      "hierarchical: hold every surface to the error alike, not only what the viewpoints see");
-  c.app->add_option("--min-area", c.bs.min_area, "hierarchical: smallest element in m² (default: the median polygon's side / 128, squared)")
+  c.app->add_option("--min-area", c.bs.min_area, "hierarchical: smallest element in m² (default: the median polygon's side / 128, squared, the median by area or by what the walkthrough sees, the smaller)")
       ->check(CLI::NonNegativeNumber);
   c.app->add_option("--element-size", c.bs.element_size, "classic: element edge length in metres (default: scene diagonal / 30)")
       ->check(CLI::NonNegativeNumber);

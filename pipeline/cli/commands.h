@@ -40,7 +40,7 @@ int run_bake(BakeCommand& c, const Ranks& rk, bool& stopped);
 
 struct ConvertCommand {
   CLI::App* app = nullptr;
-  std::string scene, output, input_folder, sky, up;
+  std::string scene, output, input_folder, sky, up, sun;
   int mgf_sides = 1;
 };
 void add_convert(CLI::App& app, ConvertCommand& c);

@@ -21,6 +21,7 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
       ->check(CLI::IsMember({1, 2}))->capture_default_str();
   c.app->add_option("--sky", c.sky, "a sky to write with the scene (walkrad bake --sky), in place of the file's");
   c.app->add_option("--up", c.up, "x,y,z: the sky's zenith (default: +Y for glTF, +Z for MGF)");
+  c.app->add_option("--sun", c.sun, "E@x,y,z: add the sun (walkrad bake --sun)");
   c.app->add_option("output", c.output, "glTF file to write (.glb or .gltf)")->required()->check(
       [](const std::string& out) {
         const size_t dot = out.find_last_of('.');
@@ -33,7 +34,7 @@ void add_convert(CLI::App& app, ConvertCommand& c) {
 int run_convert(const ConvertCommand& c) {
   const auto start = std::chrono::steady_clock::now();
   Scene scene = read_scene(c.scene, c.input_folder, c.mgf_sides);
-  apply_sky_options(scene, c.sky, c.up);
+  apply_sky_options(scene, c.sky, c.up, c.sun);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "walkrad: warning: %s: %s\n", c.scene.c_str(), w.c_str());
   write_scene_gltf(scene, c.output);
   size_t emitting = 0;

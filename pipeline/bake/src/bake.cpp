@@ -169,6 +169,7 @@ json BakeSettings::to_json() const {
   if (mgf_sides != 1) j["mgf_sides"] = mgf_sides;  // recorded where it departs from the default (older manifests the same)
   if (!sky.empty()) j["sky"] = sky;
   if (!up.empty()) j["up"] = up;
+  if (!sun.empty()) j["sun"] = sun;
   return j;
 }
 

@@ -147,7 +147,7 @@ BakeInputs read_bake_inputs(const BakeSettings& s) {
   std::vector<uint8_t> bytes;
   if (ranks().rank == 0) {
     in.scene = read_scene(s.scene, s.input_folder, s.mgf_sides);
-    apply_sky_options(in.scene, s.sky, s.up);
+    apply_sky_options(in.scene, s.sky, s.up, s.sun);
     if (const uint64_t copies = remove_duplicate_polygons(in.scene))
       in.scene.warnings.push_back(std::to_string(copies) + " duplicate polygons (same corners, same facing) dropped");
     separate_clear_glass(in.scene);

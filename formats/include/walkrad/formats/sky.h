@@ -51,9 +51,12 @@ struct Sky {
 Sky parse_sky(const std::string& spec, const std::string& where, const std::string& place, const Vec3& up,
               const std::vector<PunctualLight>& lights, const std::string& base = {}, const std::string& folder = {});
 
-// The command line's --up (the zenith "x,y,z", empty: the format's) and --sky (a spec, empty: the file's
-// sky, if any), in that order. Throws InputError (kExitBadArguments) naming the option.
-void apply_sky_options(Scene& scene, const std::string& sky, const std::string& up);
+// The command line's daylight, in this order: --up (the zenith "x,y,z", empty: the format's), --sun
+// ("E@x,y,z": a directional light of irradiance E, one value or R,G,B in W/m², shining from towards x,y,z,
+// of the sun's 0.53°; empty: none added; for scenes whose format has no sun, MGF), --sky (a spec, empty:
+// the file's sky, if any; cie-clear may follow the sun just added). Throws InputError (kExitBadArguments)
+// naming the option.
+void apply_sky_options(Scene& scene, const std::string& sky, const std::string& up, const std::string& sun = {});
 
 // "a CIE overcast sky (zenith 1000 W/(m²·sr), up +Z)", for the effect plan and messages.
 std::string sky_description(const Sky& sky);

@@ -47,6 +47,7 @@ struct BakeSettings {
   int mgf_sides = 1;        // MGF: the sides of a material that does not state them (1 as RenderPark reads, or 2)
   std::string sky;          // a sky (sky.h parse_sky's spec) in place of the scene file's; empty: the file's, if any
   std::string up;           // "x,y,z": the zenith, for a sky; empty: the format's (glTF +Y, MGF +Z)
+  std::string sun;          // "E@x,y,z": a directional light added (sky.h apply_sky_options); empty: none
   bool view_independent = false;  // every surface held to the error alike, not weighed by importance; exposure still uses the views
   std::string output;       // the bake folder
   Method method = Method::hierarchical;
@@ -56,7 +57,7 @@ struct BakeSettings {
   // hierarchical: the relative error each surface may show (where the walkthrough looks, with
   // importance), e.g. 0.02 for 2%; quality_error() maps the named presets to it.
   double error = kDefaultError;
-  double min_area = 0;      // hierarchical: smallest element, m² (0: the median polygon's side / 128, squared)
+  double min_area = 0;      // hierarchical: smallest element, m² (0: default_min_area, from the median polygon's side)
   double element_size = 0;  // classic: metres; 0: the scene's diagonal / 30
   int rays_per_point = 1;   // visibility rays: per quadrature point (classic), × 16 per link (hierarchical)
   double exposure = 0;      // 0: automatic from the viewpoints

@@ -33,7 +33,7 @@ namespace walkrad {
 // end only; the rest shows the solution, as unseen surfaces do. Every leaf where the hierarchy holds no
 // hits (no importance).
 bool in_view(const Hierarchy& h, uint32_t leaf, double reach);
-// The median input polygon's area, by area (16,384 times default_min_area): a room's wall or floor.
+// The median input polygon's area as default_min_area takes it (16,384 times it): a room's wall or floor.
 double view_reach(const Hierarchy& h);
 
 // A set of emitters as half-open ranges of DirectGather's emitter indices, sorted and disjoint.

@@ -183,7 +183,8 @@ struct HierarchicalStats {
 const char* indivisible_because(const HierarchicalSettings& s);
 const char* undivided_because(const HierarchicalSettings& s);
 
-// The default smallest element: the median input polygon's side (by area) / 128, squared.
+// The default smallest element: the median input polygon's side / 128, squared, the median by area or, where
+// smaller, by what the walkthrough sees of each polygon (its direct importance).
 double default_min_area(const Hierarchy& h);
 
 // progress(message) is called after each round (may be empty).
