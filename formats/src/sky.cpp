@@ -70,6 +70,17 @@ Vec3 parse_radiance(const std::string& text, const std::string& where, const std
   return r;
 }
 
+// "x,y,z" as a unit direction; false where it is not three finite numbers of some length.
+bool parse_direction(const std::string& text, Vec3& out) {
+  double d[3];
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &tail) != 3) return false;
+  const Vec3 v(d[0], d[1], d[2]);
+  if (!is_finite(v) || !(length(v) > 0)) return false;
+  out = normalize(v);
+  return true;
+}
+
 // The mean luminance over the directions the sky lights, uniform in solid angle (64 × 128 cells).
 double mean_luminance(const Sky& sky) {
   double sum = 0;
@@ -147,7 +158,6 @@ Sky parse_sky(const std::string& spec, const std::string& where, const std::stri
   if (lower.size() > 4 && lower.compare(lower.size() - 4, 4, ".hdr") == 0) {
     sky.kind = Sky::Kind::image;
     sky.radiance = {1, 1, 1};
-    sky.file = spec;
     const std::string path = base.empty() ? spec : (std::filesystem::path(base) / spec).string();
     sky.path = path;
     if (!folder.empty())
@@ -162,19 +172,13 @@ Sky parse_sky(const std::string& spec, const std::string& where, const std::stri
     sky.radiance = parse_radiance(args.substr(0, sun_at), where, at, code, "the zenith's radiance");
     if (sun_at != std::string::npos) {
       const std::string text = args.substr(sun_at + 1);
-      double d[3];
-      char tail = 0;
-      if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &tail) != 3)
-        refuse(where, at, "the sun's direction '" + text + "' is not three numbers x,y,z", code);
-      sky.sun = Vec3(d[0], d[1], d[2]);
+      if (!parse_direction(text, sky.sun)) refuse(where, at, "the sun's direction '" + text + "' is not three numbers x,y,z", code);
     } else {
       const auto sun = std::find_if(lights.begin(), lights.end(), [](const PunctualLight& l) { return l.type == PunctualLight::Type::directional; });
       if (sun == lights.end())
         refuse(where, at, "cie-clear needs the sun's position: give it as cie-clear:Lz@x,y,z or give the scene a directional light", code);
-      sky.sun = -sun->direction;
+      sky.sun = normalize(-sun->direction);
     }
-    if (!is_finite(sky.sun) || !(length(sky.sun) > 0)) refuse(where, at, "the sun's direction is not a direction", code);
-    sky.sun = normalize(sky.sun);
     if (dot(sky.sun, sky.up) <= 0) refuse(where, at, "the sun is below the horizon: a clear sky by day needs it above", code);
   } else {
     refuse(where, at, "unknown sky '" + kind + "' (known: uniform:L, cie-overcast:Lz, cie-clear:Lz[@x,y,z], FILE.hdr)", code);
@@ -201,21 +205,15 @@ std::string sky_description(const Sky& sky) {
     case Sky::Kind::cie_clear:
       return "a CIE clear sky (zenith " + rgb(sky.radiance) + " W/(m²·sr), the sun towards " + dir(sky.sun) + up + ")";
     case Sky::Kind::image:
-      return "a sky from " + sky.file + " (" + std::to_string(sky.width) + " × " + std::to_string(sky.height) + ", mean " +
+      return "a sky from " + sky.spec + " (" + std::to_string(sky.width) + " × " + std::to_string(sky.height) + ", mean " +
              number(sky.mean_luminance) + " W/(m²·sr)" + up + ")";
   }
   return {};
 }
 
 void apply_sky_options(Scene& scene, const std::string& sky, const std::string& up, const std::string& sun) {
-  if (!up.empty()) {
-    double d[3];
-    char tail = 0;
-    if (std::sscanf(up.c_str(), "%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &tail) != 3 || !is_finite(Vec3(d[0], d[1], d[2])) ||
-        !(length(Vec3(d[0], d[1], d[2])) > 0))
-      throw InputError("--up", up, "expected a direction x,y,z", kExitBadArguments);
-    scene.up = normalize(Vec3(d[0], d[1], d[2]));  // a glTF file's own sky keeps its zenith
-  }
+  if (!up.empty() && !parse_direction(up, scene.up))  // a glTF file's own sky keeps its zenith
+    throw InputError("--up", up, "expected a direction x,y,z", kExitBadArguments);
   if (!sun.empty()) {
     const size_t at = sun.find('@');
     if (at == std::string::npos) throw InputError("--sun", sun, "expected E@x,y,z: the irradiance, then the direction towards the sun", kExitBadArguments);
@@ -223,12 +221,10 @@ void apply_sky_options(Scene& scene, const std::string& sky, const std::string& 
     l.name = "sun";
     l.type = PunctualLight::Type::directional;
     l.intensity = parse_radiance(sun.substr(0, at), "--sun", sun, kExitBadArguments, "the irradiance");
-    double d[3];
-    char tail = 0;
-    if (std::sscanf(sun.c_str() + at + 1, "%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &tail) != 3 || !is_finite(Vec3(d[0], d[1], d[2])) ||
-        !(length(Vec3(d[0], d[1], d[2])) > 0))
+    Vec3 towards;
+    if (!parse_direction(sun.substr(at + 1), towards))
       throw InputError("--sun", sun, "the direction towards the sun is not three numbers x,y,z", kExitBadArguments);
-    l.direction = -normalize(Vec3(d[0], d[1], d[2]));
+    l.direction = -towards;
     scene.lights.push_back(std::move(l));
   }
   if (!sky.empty()) set_sky(scene, parse_sky(sky, "--sky", sky, scene.up, scene.lights));

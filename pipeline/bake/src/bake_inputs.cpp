@@ -23,7 +23,7 @@ static_assert(sizeof(PunctualLight) == sizeof(std::string) + 8 + 4 * sizeof(Vec3
               "PunctualLight changed: see bake_inputs.cpp");
 static_assert(sizeof(IesProfile) == 3 * sizeof(std::string) + 5 * sizeof(std::vector<double>) + 8 + 8 + 8 + 8 + 8,
               "IesProfile changed: see bake_inputs.cpp");
-static_assert(sizeof(Sky) == 8 + 3 * sizeof(Vec3) + 3 * sizeof(std::string) + 8 + sizeof(std::vector<float>) + 8,
+static_assert(sizeof(Sky) == 8 + 3 * sizeof(Vec3) + 2 * sizeof(std::string) + 8 + sizeof(std::vector<float>) + 8,
               "Sky changed: see bake_inputs.cpp");
 static_assert(sizeof(Texture) == 8 + sizeof(std::vector<float>) + sizeof(Vec3), "Texture changed: see bake_inputs.cpp");
 
@@ -76,7 +76,7 @@ std::vector<uint8_t> scene_to_bytes(const Scene& scene, const std::vector<Viewpo
     if (l.sky) {
       const Sky& k = *l.sky;
       out.put(k.kind), out.put(k.radiance), out.put(k.up), out.put(k.sun), out.put(k.width), out.put(k.height);
-      out.put(k.mean_luminance), out.put_string(k.file), out.put_string(k.path), out.put_string(k.spec), out.put_vector(k.rgb);
+      out.put(k.mean_luminance), out.put_string(k.path), out.put_string(k.spec), out.put_vector(k.rgb);
     }
     out.put(bool(l.profile));
     if (!l.profile) continue;
@@ -120,7 +120,7 @@ void scene_from_bytes(const std::vector<uint8_t>& bytes, Scene& scene, std::vect
     if (in.get<bool>()) {
       auto k = std::make_shared<Sky>();
       get(k->kind), get(k->radiance), get(k->up), get(k->sun), get(k->width), get(k->height);
-      get(k->mean_luminance), k->file = in.get_string(), k->path = in.get_string(), k->spec = in.get_string(), in.get_vector(k->rgb);
+      get(k->mean_luminance), k->path = in.get_string(), k->spec = in.get_string(), in.get_vector(k->rgb);
       l.sky = std::move(k);
     }
     if (!in.get<bool>()) continue;

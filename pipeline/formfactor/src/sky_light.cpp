@@ -108,6 +108,7 @@ Vec3 sky_irradiance(const Sky& sky, const Vec3& n, const Vec3& from, const RaySc
   const double far = rays ? 2e6 * rays->offset() : 0;  // twice the scene's diagonal (RayScene::offset)
   thread_local std::vector<float> lum;                 // the finest cells' luminance, painted by each level
   thread_local std::vector<Cell> cells, next;
+  thread_local std::vector<uint8_t> split;
   thread_local std::vector<uint8_t> chosen;
   thread_local std::vector<double> F;
   lum.assign(size_t(res) * size_t(res), 0.0f);
@@ -172,7 +173,7 @@ Vec3 sky_irradiance(const Sky& sky, const Vec3& n, const Vec3& from, const RaySc
   for (; level < levels; ++level) {
     const double share = 1.0 / (double(pattern.base << level) * double(pattern.base << level));
     next.clear();
-    std::vector<uint8_t> split(cells.size(), 0);
+    split.assign(cells.size(), 0);
     size_t count = 0;
     for (size_t k = 0; k < cells.size(); ++k) count += split[k] = differs(level, cells[k]) ? 1 : 0;
     if (count == 0 || cast + 4 * count > uint64_t(pattern.budget)) break;
@@ -192,16 +193,6 @@ Vec3 sky_irradiance(const Sky& sky, const Vec3& n, const Vec3& from, const RaySc
   for (const Cell& c : cells) total += c.value * share;
   rays_cast += cast;
   return total * kPi + through;
-}
-
-Vec3 open_sky_irradiance(const Sky& sky, const Vec3& n) {
-  Vec3 t, s;
-  frame(n, t, s);
-  constexpr int kSide = 256;
-  Vec3 total;
-  for (int i = 0; i < kSide; ++i)
-    for (int j = 0; j < kSide; ++j) total += sky.at(direction(n, t, s, (i + 0.5) / kSide, (j + 0.5) / kSide));
-  return total * (kPi / (kSide * kSide));
 }
 
 double sky_power(const Sky& sky, const std::vector<Polygon>& polygons) {

@@ -239,23 +239,25 @@ EffectPlan plan_effects(const Scene& scene, const RayScene& rays, const std::vec
   plan.visibility.reason = !convex ? "some polygon lies behind another's plane: occlusion is possible"
                            : plan.visibility.on ? "a punctual light stands outside the convex enclosure: its walls cast shadows"
                                                 : "a convex enclosure with nothing inside: no occlusion possible, no rays";
-  size_t points = 0, spots = 0, suns = 0, luminaires = 0, skies = 0;
-  std::string sky;
-  for (const PunctualLight& l : scene.lights)
-    if (l.type == PunctualLight::Type::sky && l.sky) sky = sky_description(*l.sky);
-  for (const PunctualLight& l : scene.lights)
-    (l.type == PunctualLight::Type::sky           ? skies
-     : l.type == PunctualLight::Type::spot        ? spots
+  size_t points = 0, spots = 0, suns = 0, luminaires = 0;
+  std::string sky;  // the sky's description; empty without one
+  for (const PunctualLight& l : scene.lights) {
+    if (l.type == PunctualLight::Type::sky) {
+      if (l.sky) sky = sky_description(*l.sky);
+      continue;
+    }
+    (l.type == PunctualLight::Type::spot          ? spots
      : l.type == PunctualLight::Type::ies         ? luminaires
      : l.type == PunctualLight::Type::directional ? suns
                                                   : points) += 1;
+  }
   plan.punctual.on = !scene.lights.empty();
   plan.punctual.reason = plan.punctual.on ? std::to_string(points) + " point, " + std::to_string(spots) + " spot and " +
                                                 std::to_string(suns) + " directional lights (KHR_lights_punctual), " +
                                                 std::to_string(luminaires) +
                                                 " IES luminaires: shot straight to the elements, a shadow ray per sample" +
                                                 (suns ? " (towards a directional light, one to each of a pattern of points of its disc)" : "") +
-                                                (skies ? "; " + sky + " seen through the scene's openings: at each point rays "
+                                                (!sky.empty() ? "; " + sky + " seen through the scene's openings: at each point rays "
                                                                    "over the hemisphere, denser where what the point sees of the sky changes"
                                                        : "")
                                           : "no punctual lights";

@@ -28,8 +28,7 @@ struct Sky {
   Vec3 radiance;         // uniform: L; the CIE skies: the zenith's Lz; image: a factor on the map (1)
   Vec3 up{0, 1, 0};      // unit, towards the zenith
   Vec3 sun{0, 1, 0};     // cie-clear: unit, towards the sun, above the horizon
-  std::string file;      // image: the .hdr file as the spec names it
-  std::string path;      // image: where it was read from (the file's folder joined to it)
+  std::string path;      // image: where the .hdr was read from (the spec joined to the scene's folder)
   uint32_t width = 0, height = 0;
   std::vector<float> rgb;  // image: row-major, top row (the zenith) first
   std::string spec;        // what it was made from: `walkrad convert` writes it back

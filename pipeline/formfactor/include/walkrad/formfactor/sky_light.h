@@ -42,10 +42,6 @@ inline constexpr double kSkyContrast = 0.05;
 Vec3 sky_irradiance(const Sky& sky, const Vec3& n, const Vec3& from, const RayScene* rays, const SkyPattern& pattern,
                     uint64_t& rays_cast);
 
-// What the sky gives a surface of normal n with nothing in the way, ∫_H L cos θ dω (the pattern's
-// first level refined without rays: 256 × 256 cells). π L for the uniform sky on any surface facing
-// up; 7π Lz / 9 for the overcast sky on the ground.
-Vec3 open_sky_irradiance(const Sky& sky, const Vec3& n);
 
 // The luminance the sky can pour on the polygons, Σ A π L̄ (1 + n·up) / 2 (L̄ its mean luminance; a
 // tilted surface sees that share of an upper hemisphere; an image's whole sphere: Σ A π L̄): the scale of
